@@ -1,0 +1,71 @@
+#pragma once
+// Terminal output of a run: info lines and progress of long steps.
+//
+// A Log is passed by reference to whatever reports; there is no global logger.
+// Quiet logs (tests) drop info lines. Progress lines show elapsed and
+// estimated remaining time.
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace kinetofem {
+
+class Log {
+ public:
+  enum class Level { Quiet, Normal, Verbose };
+  explicit Log(Level level = Level::Normal, std::FILE* stream = stdout)
+      : level_(level), stream_(stream) {}
+
+  static Log quiet() { return Log(Level::Quiet); }
+
+  template <typename... Args>
+  void info(fmt::format_string<Args...> format, Args&&... args) const {
+    if (level_ == Level::Quiet) return;
+    write(fmt::format(format, std::forward<Args>(args)...));
+  }
+  template <typename... Args>
+  void verbose(fmt::format_string<Args...> format, Args&&... args) const {
+    if (level_ != Level::Verbose) return;
+    write(fmt::format(format, std::forward<Args>(args)...));
+  }
+  bool is_quiet() const { return level_ == Level::Quiet; }
+
+ private:
+  void write(const std::string& line) const;
+  Level level_;
+  std::FILE* stream_;
+};
+
+// Reports progress of a counted task ("time steps 37/100, 1.2 s elapsed,
+// ~2.0 s left") at most every `interval_s` seconds, and once at the end.
+class Progress {
+ public:
+  Progress(const Log& log, std::string task, long total, double interval_s = 2.0);
+  void advance(long done);  // `done` items of `total` are finished
+  void finish();
+
+ private:
+  const Log& log_;
+  std::string task_;
+  long total_;
+  double interval_s_;
+  std::chrono::steady_clock::time_point start_, last_report_;
+  bool finished_ = false;
+};
+
+// Wall-clock stopwatch in seconds.
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace kinetofem
