@@ -15,9 +15,9 @@
 //         mid-edge nodes of TET10: 4 (0-1), 5 (1-2), 6 (2-0), 7 (3-0), 8 (3-2), 9 (3-1)
 //
 //                  3
-//                 /|\            (note: VTK/XDMF swaps nodes 8 and 9;
+//                 /|\ .          (note: VTK/XDMF swaps nodes 8 and 9;
 //                7 | 9            the XDMF writer converts)
-//               /  8  \
+//               /  8  \ .
 //              0---|-4-1
 //               \  |  /
 //                6 | 5

@@ -1,0 +1,45 @@
+#pragma once
+// Element library — isoparametric shape functions and Gauss rules of the
+// solid elements (TET4, TET10, HEX8, HEX20) and of their faces (TRI3, TRI6,
+// QUAD4, QUAD8). Node numbering as in mesh.hpp (Gmsh convention).
+//
+// Gauss rules (exact for the element's stiffness on undistorted geometry):
+//   TET4 1 point, TET10 4 points (degree 2), HEX8 2x2x2, HEX20 3x3x3 (full),
+//   TRI3 1, TRI6 3, QUAD4 2x2, QUAD8 3x3.
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/solver/mesh.hpp"
+
+namespace kinetofem::fem {
+
+struct QuadraturePoint {
+  Eigen::Vector3d xi;  // reference coordinates (2D rules leave xi[2] = 0)
+  double weight;
+};
+
+// The element's Gauss rule.
+const std::vector<QuadraturePoint>& quadrature(ElementType type);
+const std::vector<QuadraturePoint>& quadrature(FaceType type);
+
+// Shape functions N (n) and their reference derivatives dN/dxi (n x 3) at xi.
+void shape_functions(ElementType type, const Eigen::Vector3d& xi, Eigen::VectorXd& N,
+                     Eigen::MatrixXd& dN_dxi);
+// Face shape functions N (n) and derivatives dN/d(xi, eta) (n x 2).
+void shape_functions(FaceType type, const Eigen::Vector3d& xi, Eigen::VectorXd& N,
+                     Eigen::MatrixXd& dN_dxi);
+
+// Reference coordinates of the element's nodes (n x 3).
+Eigen::MatrixXd reference_nodes(ElementType type);
+
+// Gauss rule for load integrals (N times a body-force field): degree 3 on
+// tetrahedra (5 points, exact for a linear field on TET10), else the
+// element's stiffness rule.
+const std::vector<QuadraturePoint>& load_quadrature(ElementType type);
+
+// The two corner nodes of a mid-edge node (TET10: 4..9, HEX20: 8..19).
+std::array<int, 2> edge_corners(ElementType type, int mid_node);
+
+}  // namespace kinetofem::fem

@@ -1,0 +1,235 @@
+#include "kinetofem/solver/cholmod_solver.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <cholmod.h>
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::fem {
+
+namespace {
+
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 8e9;
+}
+
+const char* status_text(int status) {
+  switch (status) {
+    case CHOLMOD_OK: return "ok";
+    case CHOLMOD_NOT_INSTALLED: return "method not installed";
+    case CHOLMOD_OUT_OF_MEMORY: return "out of memory";
+    case CHOLMOD_TOO_LARGE: return "integer overflow (problem too large)";
+    case CHOLMOD_INVALID: return "invalid input";
+    case CHOLMOD_GPU_PROBLEM: return "GPU problem";
+    case CHOLMOD_NOT_POSDEF: return "matrix not positive definite";
+    case CHOLMOD_DSMALL: return "tiny diagonal entry";
+    default: return "unknown status";
+  }
+}
+
+const char* ordering_name(int ordering) {
+  switch (ordering) {
+    case CHOLMOD_NATURAL: return "natural";
+    case CHOLMOD_GIVEN: return "given";
+    case CHOLMOD_AMD: return "AMD";
+    case CHOLMOD_METIS: return "METIS";
+    case CHOLMOD_NESDIS: return "NESDIS";
+    case CHOLMOD_COLAMD: return "COLAMD";
+    default: return "other";
+  }
+}
+
+}  // namespace
+
+struct CholmodSolver::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  cholmod_sparse view{};  // non-owning view of the caller's matrix
+  const SymmetricUpperMatrix* matrix = nullptr;
+
+  Impl() {
+    cholmod_l_start(&common);
+    common.error_handler = nullptr;  // we check every status ourselves
+    common.print = 0;
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    common.final_ll = 1;
+  }
+  ~Impl() {
+    if (factor) cholmod_l_free_factor(&factor, &common);
+    cholmod_l_finish(&common);
+  }
+
+  // Throws unless the last CHOLMOD call left an acceptable status.
+  void check(const char* function) const {
+    if (common.status < CHOLMOD_OK)
+      fail("CHOLMOD {} failed: {} (status {})", function, status_text(common.status),
+           common.status);
+  }
+
+  void wrap(const SymmetricUpperMatrix& A) {
+    require(A.rows() == A.cols(), "CHOLMOD: matrix is {} x {}, not square", A.rows(), A.cols());
+    require(A.isCompressed(), "CHOLMOD: matrix must be in compressed storage");
+    view = cholmod_sparse{};
+    view.nrow = size_t(A.rows());
+    view.ncol = size_t(A.cols());
+    view.nzmax = size_t(A.nonZeros());
+    view.p = const_cast<std::int64_t*>(A.outerIndexPtr());
+    view.i = const_cast<std::int64_t*>(A.innerIndexPtr());
+    view.x = const_cast<double*>(A.valuePtr());
+    view.stype = 1;  // upper triangle stored
+    view.itype = CHOLMOD_LONG;
+    view.xtype = CHOLMOD_REAL;
+    view.dtype = CHOLMOD_DOUBLE;
+    view.sorted = 1;
+    view.packed = 1;
+    matrix = &A;
+  }
+};
+
+CholmodSolver::CholmodSolver(CholmodOptions options, const Log* log)
+    : impl_(std::make_unique<Impl>()), options_(options), log_(log) {
+  switch (options_.ordering) {
+    case CholmodOptions::Ordering::Metis:
+      impl_->common.nmethods = 1;
+      impl_->common.method[0].ordering = CHOLMOD_METIS;
+      impl_->common.postorder = 1;
+      break;
+    case CholmodOptions::Ordering::Amd:
+      impl_->common.nmethods = 1;
+      impl_->common.method[0].ordering = CHOLMOD_AMD;
+      impl_->common.postorder = 1;
+      break;
+    case CholmodOptions::Ordering::Best:
+      impl_->common.nmethods = 0;  // CHOLMOD's default strategy: AMD, then METIS if better
+      break;
+  }
+}
+
+CholmodSolver::~CholmodSolver() = default;
+
+void CholmodSolver::analyze(const SymmetricUpperMatrix& matrix) {
+  Stopwatch clock;
+  impl_->wrap(matrix);
+  if (impl_->factor) cholmod_l_free_factor(&impl_->factor, &impl_->common);
+  impl_->factor = cholmod_l_analyze(&impl_->view, &impl_->common);
+  impl_->check("cholmod_l_analyze");
+  require(impl_->factor != nullptr, "CHOLMOD cholmod_l_analyze returned no factor");
+  stats_ = CholmodStatistics{};
+  stats_.equations = matrix.rows();
+  stats_.matrix_nonzeros = matrix.nonZeros();
+  stats_.factor_nonzeros = impl_->common.lnz;
+  stats_.factorization_flops = impl_->common.fl;
+  stats_.ordering = ordering_name(impl_->factor->ordering);
+  // Supernodal numeric factor: xsize doubles of values plus the integer
+  // structure already allocated by the symbolic analysis.
+  const double values = impl_->factor->is_super ? double(impl_->factor->xsize)
+                                                : impl_->common.lnz;
+  stats_.factor_bytes = values * sizeof(double);
+  stats_.analyze_seconds = clock.seconds();
+  const double limit =
+      options_.max_factor_bytes > 0 ? options_.max_factor_bytes : 0.8 * physical_memory_bytes();
+  if (stats_.factor_bytes > limit)
+    fail("the Cholesky factor of this {}-equation system needs {:.1f} GB (symbolic analysis, "
+         "{} ordering), more than the {:.1f} GB allowed: coarsen the mesh or use the iterative "
+         "solver",
+         stats_.equations, stats_.factor_bytes * 1e-9, stats_.ordering, limit * 1e-9);
+  if (log_)
+    log_->info("  CHOLMOD analyze: {} equations, nnz(K) {} (upper), nnz(L) {:.4g}, {:.4g} flops, "
+               "factor {:.2f} GB, {} ordering, {:.2f} s",
+               stats_.equations, stats_.matrix_nonzeros, stats_.factor_nonzeros,
+               stats_.factorization_flops, stats_.factor_bytes * 1e-9, stats_.ordering,
+               stats_.analyze_seconds);
+}
+
+void CholmodSolver::factorize(const SymmetricUpperMatrix& matrix) {
+  require(impl_->factor != nullptr, "CHOLMOD factorize called before analyze");
+  require(matrix.rows() == stats_.equations && matrix.nonZeros() == stats_.matrix_nonzeros,
+          "CHOLMOD factorize: matrix pattern differs from the analysed one");
+  Stopwatch clock;
+  impl_->wrap(matrix);
+  const int ok = cholmod_l_factorize(&impl_->view, impl_->factor, &impl_->common);
+  impl_->check("cholmod_l_factorize");
+  if (!ok) fail("CHOLMOD cholmod_l_factorize failed (status {})", impl_->common.status);
+  if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
+      impl_->factor->minor < impl_->factor->n) {
+    const auto equation = std::int64_t(impl_->factor->minor);
+    throw NotPositiveDefinite(
+        fmt::format("stiffness matrix is not positive definite: the Cholesky factorization "
+                    "broke down at equation {} of {} (a rigid-body mode left unsupported, or an "
+                    "element without stiffness)",
+                    equation, stats_.equations),
+        equation);
+  }
+  stats_.factorize_seconds = clock.seconds();
+  stats_.reciprocal_condition = cholmod_l_rcond(impl_->factor, &impl_->common);
+  impl_->check("cholmod_l_rcond");
+  if (!(stats_.reciprocal_condition >= options_.min_reciprocal_condition))
+    throw NotPositiveDefinite(
+        fmt::format("stiffness matrix is singular to working precision (reciprocal condition "
+                    "estimate {:.2e} < {:.0e}): the model has rigid-body modes left unsupported",
+                    stats_.reciprocal_condition, options_.min_reciprocal_condition),
+        -1);
+  if (log_)
+    log_->info("  CHOLMOD factorize: {:.2f} s, {:.1f} GFLOP/s, rcond estimate {:.2e}",
+               stats_.factorize_seconds, stats_.factorize_gflops(), stats_.reciprocal_condition);
+}
+
+Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& rhs) {
+  require(impl_->factor != nullptr && impl_->matrix != nullptr,
+          "CHOLMOD solve called before factorize");
+  require(rhs.rows() == stats_.equations, "CHOLMOD solve: right-hand side has {} rows, system {}",
+          rhs.rows(), stats_.equations);
+  require(rhs.allFinite(), "CHOLMOD solve: right-hand side has NaN or Inf entries");
+  Stopwatch clock;
+  cholmod_dense b{};
+  b.nrow = size_t(rhs.rows());
+  b.ncol = size_t(rhs.cols());
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(rhs.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* x = cholmod_l_solve(CHOLMOD_A, impl_->factor, &b, &impl_->common);
+  impl_->check("cholmod_l_solve");
+  require(x != nullptr, "CHOLMOD cholmod_l_solve returned no solution");
+  Eigen::MatrixXd solution =
+      Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(x->x), rhs.rows(), rhs.cols());
+  cholmod_l_free_dense(&x, &impl_->common);
+  stats_.last_solve_seconds = clock.seconds();
+  stats_.last_solve_rhs = rhs.cols();
+
+  // Residual check on up to four columns (first, last and two between): a
+  // full check of a large block would cost more than the block solve.
+  const Eigen::Index k = rhs.cols();
+  std::vector<Eigen::Index> columns;
+  for (Eigen::Index c : {Eigen::Index(0), k / 3, (2 * k) / 3, k - 1})
+    if (c >= 0 && c < k && std::find(columns.begin(), columns.end(), c) == columns.end())
+      columns.push_back(c);
+  double worst = 0.0;
+  const auto K = impl_->matrix->selfadjointView<Eigen::Upper>();
+  for (Eigen::Index c : columns) {
+    const double bnorm = rhs.col(c).norm();
+    if (!solution.col(c).allFinite())
+      fail("CHOLMOD solve produced NaN or Inf in right-hand side {}", c);
+    if (bnorm == 0.0) continue;
+    const Eigen::VectorXd r = K * solution.col(c) - rhs.col(c);
+    worst = std::max(worst, r.norm() / bnorm);
+  }
+  stats_.last_relative_residual = worst;
+  if (!(worst <= options_.max_relative_residual))
+    fail("CHOLMOD solve: relative residual {:.2e} exceeds {:.0e} (ill-conditioned system)", worst,
+         options_.max_relative_residual);
+  if (log_)
+    log_->info("  CHOLMOD solve: {} right-hand side(s) in {:.3f} s ({:.4f} s each), relative "
+               "residual {:.1e}",
+               k, stats_.last_solve_seconds, stats_.last_solve_seconds / double(std::max<Eigen::Index>(k, 1)),
+               worst);
+  return solution;
+}
+
+}  // namespace kinetofem::fem

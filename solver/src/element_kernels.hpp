@@ -1,0 +1,105 @@
+#pragma once
+// Internal: per-element kernels shared by assembly and stress recovery —
+// Jacobian, physical shape-function gradients, element stiffness of the
+// isotropic elastic solid. Templated on the node count so the small dense
+// algebra has fixed sizes.
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "kinetofem/solver/element_library.hpp"
+#include "kinetofem/solver/mesh.hpp"
+
+namespace kinetofem::fem::detail {
+
+// Shape functions and reference gradients of a rule, evaluated once.
+template <int NPE>
+struct RuleTable {
+  std::vector<Eigen::Matrix<double, NPE, 1>> N;
+  std::vector<Eigen::Matrix<double, NPE, 3>> dN;
+  std::vector<double> weight;
+
+  RuleTable(ElementType type, const std::vector<QuadraturePoint>& rule) {
+    Eigen::VectorXd n;
+    Eigen::MatrixXd d;
+    for (const auto& qp : rule) {
+      shape_functions(type, qp.xi, n, d);
+      N.push_back(n);
+      dN.push_back(d);
+      weight.push_back(qp.weight);
+    }
+  }
+  size_t size() const { return weight.size(); }
+};
+
+template <int NPE>
+using NodeMatrix = Eigen::Matrix<double, NPE, 3>;
+
+template <int NPE>
+NodeMatrix<NPE> element_coordinates(const Mesh& mesh, std::span<const Index> nodes) {
+  NodeMatrix<NPE> X;
+  for (int a = 0; a < NPE; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
+  return X;
+}
+
+// Physical gradients G = dN/dx (NPE x 3) and det J at one point.
+template <int NPE>
+double physical_gradients(const NodeMatrix<NPE>& X, const Eigen::Matrix<double, NPE, 3>& dN,
+                          Eigen::Matrix<double, NPE, 3>& G) {
+  const Eigen::Matrix3d J = X.transpose() * dN;  // J(i, j) = dx_i / dxi_j
+  const double det = J.determinant();
+  G.noalias() = dN * J.inverse();
+  return det;
+}
+
+// Element stiffness of an isotropic solid:
+//   K_(a i)(b j) = sum_gp w detJ (lambda G_ai G_bj + mu G_aj G_bi + mu delta_ij G_a . G_b).
+// Returns the smallest det J met (<= 0 means inverted or degenerate).
+template <int NPE>
+double element_stiffness(const NodeMatrix<NPE>& X, const RuleTable<NPE>& rule, double lambda,
+                         double mu, Eigen::Matrix<double, 3 * NPE, 3 * NPE>& K) {
+  K.setZero();
+  Eigen::Matrix<double, NPE, 3> G;
+  double min_det = std::numeric_limits<double>::infinity();
+  for (size_t q = 0; q < rule.size(); ++q) {
+    const double det = physical_gradients<NPE>(X, rule.dN[q], G);
+    min_det = std::min(min_det, det);
+    const double w = rule.weight[q] * det;
+    const Eigen::Matrix<double, NPE, NPE> dot = G * G.transpose();
+    for (int b = 0; b < NPE; ++b) {
+      for (int a = 0; a <= b; ++a) {
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            double v = lambda * G(a, i) * G(b, j) + mu * G(a, j) * G(b, i);
+            if (i == j) v += mu * dot(a, b);
+            K(3 * a + i, 3 * b + j) += w * v;
+          }
+        }
+      }
+    }
+  }
+  // Fill the lower node blocks from the upper ones.
+  for (int b = 0; b < NPE; ++b)
+    for (int a = b + 1; a < NPE; ++a)
+      K.template block<3, 3>(3 * a, 3 * b) = K.template block<3, 3>(3 * b, 3 * a).transpose();
+  return min_det;
+}
+
+// Calls f.template operator()<NPE>(block_index, block) with the block's node count.
+template <typename F>
+void dispatch_block(ElementType type, F&& f) {
+  switch (type) {
+    case ElementType::Tet4: f.template operator()<4>(); break;
+    case ElementType::Tet10: f.template operator()<10>(); break;
+    case ElementType::Hex8: f.template operator()<8>(); break;
+    case ElementType::Hex20: f.template operator()<20>(); break;
+  }
+}
+
+// Lame parameters.
+inline void lame(double E, double nu, double& lambda, double& mu) {
+  lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  mu = E / (2.0 * (1.0 + nu));
+}
+
+}  // namespace kinetofem::fem::detail

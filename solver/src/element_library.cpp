@@ -1,0 +1,269 @@
+#include "kinetofem/solver/element_library.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::fem {
+
+namespace {
+
+// Mid-edge nodes as pairs of corners, Gmsh ordering (see mesh.hpp).
+constexpr std::array<std::array<int, 2>, 6> kTetEdges = {
+    {{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}}};
+constexpr std::array<std::array<int, 2>, 12> kHexEdges = {{{0, 1},
+                                                           {0, 3},
+                                                           {0, 4},
+                                                           {1, 2},
+                                                           {1, 5},
+                                                           {2, 3},
+                                                           {2, 6},
+                                                           {3, 7},
+                                                           {4, 5},
+                                                           {4, 7},
+                                                           {5, 6},
+                                                           {6, 7}}};
+constexpr double kHexCorners[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                      {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+constexpr double kQuadCorners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+
+std::vector<QuadraturePoint> gauss_legendre_box(int dims, int points) {
+  static const double x2[2] = {-1.0 / std::sqrt(3.0), 1.0 / std::sqrt(3.0)};
+  static const double w2[2] = {1.0, 1.0};
+  static const double x3[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
+  static const double w3[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const double* x = points == 2 ? x2 : x3;
+  const double* w = points == 2 ? w2 : w3;
+  std::vector<QuadraturePoint> rule;
+  const int kmax = dims == 3 ? points : 1;
+  for (int k = 0; k < kmax; ++k)
+    for (int j = 0; j < points; ++j)
+      for (int i = 0; i < points; ++i)
+        rule.push_back({Eigen::Vector3d(x[i], x[j], dims == 3 ? x[k] : 0.0),
+                        w[i] * w[j] * (dims == 3 ? w[k] : 1.0)});
+  return rule;
+}
+
+}  // namespace
+
+const std::vector<QuadraturePoint>& quadrature(ElementType type) {
+  static const std::vector<QuadraturePoint> tet1 = {{Eigen::Vector3d(0.25, 0.25, 0.25), 1.0 / 6.0}};
+  static const std::vector<QuadraturePoint> tet4 = [] {
+    const double a = 0.5854101966249685, b = 0.1381966011250105;
+    return std::vector<QuadraturePoint>{{Eigen::Vector3d(b, b, b), 1.0 / 24.0},
+                                        {Eigen::Vector3d(a, b, b), 1.0 / 24.0},
+                                        {Eigen::Vector3d(b, a, b), 1.0 / 24.0},
+                                        {Eigen::Vector3d(b, b, a), 1.0 / 24.0}};
+  }();
+  static const std::vector<QuadraturePoint> hex2 = gauss_legendre_box(3, 2);
+  static const std::vector<QuadraturePoint> hex3 = gauss_legendre_box(3, 3);
+  switch (type) {
+    case ElementType::Tet4: return tet1;
+    case ElementType::Tet10: return tet4;
+    case ElementType::Hex8: return hex2;
+    case ElementType::Hex20: return hex3;
+  }
+  return tet1;
+}
+
+const std::vector<QuadraturePoint>& load_quadrature(ElementType type) {
+  // Degree 3 on tetrahedra (Keast, with a negative centroid weight): exact for
+  // quadratic shape functions times a linear body-force field (rigid-body
+  // inertia loads are affine in x).
+  static const std::vector<QuadraturePoint> tet5 = [] {
+    const double s = 1.0 / 6.0, h = 0.5;
+    return std::vector<QuadraturePoint>{{Eigen::Vector3d(0.25, 0.25, 0.25), -2.0 / 15.0},
+                                        {Eigen::Vector3d(s, s, s), 3.0 / 40.0},
+                                        {Eigen::Vector3d(h, s, s), 3.0 / 40.0},
+                                        {Eigen::Vector3d(s, h, s), 3.0 / 40.0},
+                                        {Eigen::Vector3d(s, s, h), 3.0 / 40.0}};
+  }();
+  if (type == ElementType::Tet4 || type == ElementType::Tet10) return tet5;
+  return quadrature(type);
+}
+
+const std::vector<QuadraturePoint>& quadrature(FaceType type) {
+  static const std::vector<QuadraturePoint> tri1 = {
+      {Eigen::Vector3d(1.0 / 3.0, 1.0 / 3.0, 0.0), 0.5}};
+  static const std::vector<QuadraturePoint> tri3 = {
+      {Eigen::Vector3d(1.0 / 6.0, 1.0 / 6.0, 0.0), 1.0 / 6.0},
+      {Eigen::Vector3d(2.0 / 3.0, 1.0 / 6.0, 0.0), 1.0 / 6.0},
+      {Eigen::Vector3d(1.0 / 6.0, 2.0 / 3.0, 0.0), 1.0 / 6.0}};
+  static const std::vector<QuadraturePoint> quad2 = gauss_legendre_box(2, 2);
+  static const std::vector<QuadraturePoint> quad3 = gauss_legendre_box(2, 3);
+  switch (type) {
+    case FaceType::Tri3: return tri1;
+    case FaceType::Tri6: return tri3;
+    case FaceType::Quad4: return quad2;
+    case FaceType::Quad8: return quad3;
+  }
+  return tri1;
+}
+
+void shape_functions(ElementType type, const Eigen::Vector3d& xi, Eigen::VectorXd& N,
+                     Eigen::MatrixXd& dN) {
+  const int n = nodes_per_element(type);
+  N.resize(n);
+  dN.resize(n, 3);
+  if (type == ElementType::Tet4 || type == ElementType::Tet10) {
+    // Barycentric coordinates L0 = 1 - xi - eta - zeta, L1 = xi, L2 = eta, L3 = zeta.
+    const double L[4] = {1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]};
+    const double dL[4][3] = {{-1, -1, -1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    if (type == ElementType::Tet4) {
+      for (int a = 0; a < 4; ++a) {
+        N[a] = L[a];
+        for (int d = 0; d < 3; ++d) dN(a, d) = dL[a][d];
+      }
+      return;
+    }
+    for (int a = 0; a < 4; ++a) {
+      N[a] = L[a] * (2.0 * L[a] - 1.0);
+      for (int d = 0; d < 3; ++d) dN(a, d) = (4.0 * L[a] - 1.0) * dL[a][d];
+    }
+    for (int e = 0; e < 6; ++e) {
+      const int i = kTetEdges[e][0], j = kTetEdges[e][1];
+      N[4 + e] = 4.0 * L[i] * L[j];
+      for (int d = 0; d < 3; ++d) dN(4 + e, d) = 4.0 * (dL[i][d] * L[j] + L[i] * dL[j][d]);
+    }
+    return;
+  }
+  if (type == ElementType::Hex8) {
+    for (int a = 0; a < 8; ++a) {
+      const double* c = kHexCorners[a];
+      const double f[3] = {1 + c[0] * xi[0], 1 + c[1] * xi[1], 1 + c[2] * xi[2]};
+      N[a] = 0.125 * f[0] * f[1] * f[2];
+      dN(a, 0) = 0.125 * c[0] * f[1] * f[2];
+      dN(a, 1) = 0.125 * f[0] * c[1] * f[2];
+      dN(a, 2) = 0.125 * f[0] * f[1] * c[2];
+    }
+    return;
+  }
+  // HEX20 (serendipity): corners, then mid-edge nodes.
+  for (int a = 0; a < 8; ++a) {
+    const double* c = kHexCorners[a];
+    const double f[3] = {1 + c[0] * xi[0], 1 + c[1] * xi[1], 1 + c[2] * xi[2]};
+    const double s = c[0] * xi[0] + c[1] * xi[1] + c[2] * xi[2] - 2.0;
+    N[a] = 0.125 * f[0] * f[1] * f[2] * s;
+    dN(a, 0) = 0.125 * c[0] * (f[1] * f[2] * s + f[0] * f[1] * f[2]);
+    dN(a, 1) = 0.125 * c[1] * (f[0] * f[2] * s + f[0] * f[1] * f[2]);
+    dN(a, 2) = 0.125 * c[2] * (f[0] * f[1] * s + f[0] * f[1] * f[2]);
+  }
+  for (int e = 0; e < 12; ++e) {
+    const double* p = kHexCorners[kHexEdges[e][0]];
+    const double* q = kHexCorners[kHexEdges[e][1]];
+    double c[3];
+    int zero_axis = 0;
+    for (int d = 0; d < 3; ++d) {
+      c[d] = 0.5 * (p[d] + q[d]);
+      if (c[d] == 0.0) zero_axis = d;
+    }
+    // N = 1/4 (1 - xi_k^2) prod_{d != k} (1 + c_d xi_d), k the edge's axis.
+    double value = 0.25 * (1.0 - xi[zero_axis] * xi[zero_axis]);
+    double grad[3];
+    for (int d = 0; d < 3; ++d) {
+      if (d == zero_axis) continue;
+      value *= 1.0 + c[d] * xi[d];
+    }
+    for (int d = 0; d < 3; ++d) {
+      double g = 0.25;
+      for (int k = 0; k < 3; ++k) {
+        if (k == zero_axis)
+          g *= (k == d) ? -2.0 * xi[k] : 1.0 - xi[k] * xi[k];
+        else
+          g *= (k == d) ? c[k] : 1.0 + c[k] * xi[k];
+      }
+      grad[d] = g;
+    }
+    N[8 + e] = value;
+    for (int d = 0; d < 3; ++d) dN(8 + e, d) = grad[d];
+  }
+}
+
+void shape_functions(FaceType type, const Eigen::Vector3d& xi, Eigen::VectorXd& N,
+                     Eigen::MatrixXd& dN) {
+  const int n = nodes_per_face(type);
+  N.resize(n);
+  dN.resize(n, 2);
+  if (type == FaceType::Tri3 || type == FaceType::Tri6) {
+    const double L[3] = {1.0 - xi[0] - xi[1], xi[0], xi[1]};
+    const double dL[3][2] = {{-1, -1}, {1, 0}, {0, 1}};
+    if (type == FaceType::Tri3) {
+      for (int a = 0; a < 3; ++a) {
+        N[a] = L[a];
+        dN(a, 0) = dL[a][0];
+        dN(a, 1) = dL[a][1];
+      }
+      return;
+    }
+    for (int a = 0; a < 3; ++a) {
+      N[a] = L[a] * (2.0 * L[a] - 1.0);
+      for (int d = 0; d < 2; ++d) dN(a, d) = (4.0 * L[a] - 1.0) * dL[a][d];
+    }
+    for (int e = 0; e < 3; ++e) {
+      const int i = e, j = (e + 1) % 3;
+      N[3 + e] = 4.0 * L[i] * L[j];
+      for (int d = 0; d < 2; ++d) dN(3 + e, d) = 4.0 * (dL[i][d] * L[j] + L[i] * dL[j][d]);
+    }
+    return;
+  }
+  if (type == FaceType::Quad4) {
+    for (int a = 0; a < 4; ++a) {
+      const double* c = kQuadCorners[a];
+      N[a] = 0.25 * (1 + c[0] * xi[0]) * (1 + c[1] * xi[1]);
+      dN(a, 0) = 0.25 * c[0] * (1 + c[1] * xi[1]);
+      dN(a, 1) = 0.25 * (1 + c[0] * xi[0]) * c[1];
+    }
+    return;
+  }
+  // QUAD8: corners, then mid-edge nodes 4 (0-1), 5 (1-2), 6 (2-3), 7 (3-0).
+  for (int a = 0; a < 4; ++a) {
+    const double* c = kQuadCorners[a];
+    const double f0 = 1 + c[0] * xi[0], f1 = 1 + c[1] * xi[1];
+    const double s = c[0] * xi[0] + c[1] * xi[1] - 1.0;
+    N[a] = 0.25 * f0 * f1 * s;
+    dN(a, 0) = 0.25 * c[0] * f1 * (s + f0);
+    dN(a, 1) = 0.25 * c[1] * f0 * (s + f1);
+  }
+  for (int e = 0; e < 4; ++e) {
+    const double* p = kQuadCorners[e];
+    const double* q = kQuadCorners[(e + 1) % 4];
+    const double c[2] = {0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])};
+    if (c[0] == 0.0) {
+      N[4 + e] = 0.5 * (1 - xi[0] * xi[0]) * (1 + c[1] * xi[1]);
+      dN(4 + e, 0) = -xi[0] * (1 + c[1] * xi[1]);
+      dN(4 + e, 1) = 0.5 * (1 - xi[0] * xi[0]) * c[1];
+    } else {
+      N[4 + e] = 0.5 * (1 - xi[1] * xi[1]) * (1 + c[0] * xi[0]);
+      dN(4 + e, 0) = 0.5 * (1 - xi[1] * xi[1]) * c[0];
+      dN(4 + e, 1) = -xi[1] * (1 + c[0] * xi[0]);
+    }
+  }
+}
+
+Eigen::MatrixXd reference_nodes(ElementType type) {
+  const int n = nodes_per_element(type);
+  Eigen::MatrixXd X(n, 3);
+  if (type == ElementType::Tet4 || type == ElementType::Tet10) {
+    const double corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int a = 0; a < 4; ++a) X.row(a) << corners[a][0], corners[a][1], corners[a][2];
+    if (type == ElementType::Tet10)
+      for (int e = 0; e < 6; ++e) X.row(4 + e) = 0.5 * (X.row(kTetEdges[e][0]) + X.row(kTetEdges[e][1]));
+    return X;
+  }
+  for (int a = 0; a < 8; ++a) X.row(a) << kHexCorners[a][0], kHexCorners[a][1], kHexCorners[a][2];
+  if (type == ElementType::Hex20)
+    for (int e = 0; e < 12; ++e) X.row(8 + e) = 0.5 * (X.row(kHexEdges[e][0]) + X.row(kHexEdges[e][1]));
+  return X;
+}
+
+std::array<int, 2> edge_corners(ElementType type, int mid_node) {
+  if (type == ElementType::Tet10) {
+    const auto& e = kTetEdges[size_t(mid_node - 4)];
+    return {e[0], e[1]};
+  }
+  const auto& e = kHexEdges[size_t(mid_node - 8)];
+  return {e[0], e[1]};
+}
+
+}  // namespace kinetofem::fem

@@ -1,0 +1,76 @@
+#include "kinetofem/solver/static_analysis.hpp"
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::fem {
+
+LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
+                                           CholmodOptions options)
+    : model_(model),
+      log_(log),
+      dofs_((model.mesh.validate(), model.material.validate(), model.mesh.node_count()),
+            model.supports),
+      solver_(options, &log) {
+  const Mesh& mesh = model.mesh;
+  log_.info("  FE model: {} nodes, {} elements, {} DoFs ({} free, {} prescribed)",
+            mesh.node_count(), mesh.element_count(), dofs_.dof_count(), dofs_.free_count(),
+            dofs_.prescribed_count());
+  require(dofs_.free_count() > 0, "FE model has no free DoFs: every node is supported");
+  Stopwatch clock;
+  check_element_jacobians(mesh);
+  stiffness_ = assemble_stiffness(mesh, model.material, dofs_);
+  timings_.assembly_seconds = clock.seconds();
+  log_.info("  assembly: {:.2f} s", timings_.assembly_seconds);
+  solver_.analyze(stiffness_.free_free);
+  try {
+    solver_.factorize(stiffness_.free_free);
+  } catch (const NotPositiveDefinite& error) {
+    if (error.equation() < 0) throw;
+    // Name the node and direction of the equation where the factorization failed.
+    Index dof = -1;
+    for (Index d = 0; d < dofs_.dof_count(); ++d)
+      if (dofs_.equation(d) == error.equation()) dof = d;
+    fail("stiffness matrix is not positive definite at node {} direction {} (equation {}): the "
+         "model has a rigid-body mode left unsupported or an element without stiffness",
+         dof / 3, "xyz"[dof % 3], error.equation());
+  }
+}
+
+std::vector<DisplacementField> LinearStaticAnalysis::solve(const std::vector<LoadCase>& load_cases) {
+  Stopwatch clock;
+  const Eigen::MatrixXd F = assemble_external_forces(model_.mesh, model_.material, load_cases);
+  timings_.load_assembly_seconds = clock.seconds();
+  return solve_forces(F);
+}
+
+std::vector<DisplacementField> LinearStaticAnalysis::solve_forces(
+    const Eigen::MatrixXd& external_forces) {
+  require(external_forces.rows() == dofs_.dof_count(),
+          "external force block has {} rows, the model {} DoFs", external_forces.rows(),
+          dofs_.dof_count());
+  const Index cases = external_forces.cols();
+  Eigen::MatrixXd rhs(dofs_.free_count(), cases);
+  for (Index d = 0; d < dofs_.dof_count(); ++d) {
+    const Index eq = dofs_.equation(d);
+    if (eq >= 0) rhs.row(eq) = external_forces.row(d);
+  }
+  rhs.colwise() -= stiffness_.prescribed_coupling_force;
+  const Eigen::MatrixXd x = solver_.solve(rhs);
+  std::vector<DisplacementField> out;
+  out.reserve(size_t(cases));
+  for (Index k = 0; k < cases; ++k) {
+    const Eigen::VectorXd full = dofs_.expand(x.col(k));
+    out.push_back(Eigen::Map<const DisplacementField>(full.data(), model_.mesh.node_count(), 3));
+  }
+  return out;
+}
+
+Eigen::VectorXd LinearStaticAnalysis::reactions(const DisplacementField& displacement,
+                                                const Eigen::VectorXd& external_force) const {
+  Eigen::VectorXd r = internal_forces(model_.mesh, model_.material, displacement) - external_force;
+  for (Index d = 0; d < dofs_.dof_count(); ++d)
+    if (dofs_.equation(d) >= 0) r[d] = 0.0;
+  return r;
+}
+
+}  // namespace kinetofem::fem
