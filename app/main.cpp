@@ -9,6 +9,7 @@
 #include "kinetofem/app/jobs.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/version.hpp"
+#include "kinetofem/postproc/provenance.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"kinetofem: kinematic, kinetostatic and finite-element analysis of robot "
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", run_options.quiet, "Print only errors and the summary");
 
   CLI11_PARSE(app, argc, argv);
+  run_options.command_line = kinetofem::post::command_line_of(argc, argv);
   try {
     if (run->parsed()) return kinetofem::app::run_case(run_options);
   } catch (const kinetofem::Error& error) {

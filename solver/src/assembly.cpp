@@ -420,6 +420,26 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
   return R;
 }
 
+double surface_area(const Mesh& mesh, const std::vector<FaceBlock>& faces) {
+  double area = 0.0;
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (const auto& block : faces) {
+    const int n = nodes_per_face(block.type);
+    for (Index f = 0; f < block.size(); ++f) {
+      const auto nodes = block.face(f);
+      Eigen::MatrixXd X(n, 3);
+      for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
+      for (const auto& qp : quadrature(block.type)) {
+        shape_functions(block.type, qp.xi, N, dN);
+        const Eigen::Vector3d t1 = X.transpose() * dN.col(0), t2 = X.transpose() * dN.col(1);
+        area += qp.weight * t1.cross(t2).norm();
+      }
+    }
+  }
+  return area;
+}
+
 double mesh_volume(const Mesh& mesh) {
   double volume = 0.0;
   for (const auto& block : mesh.blocks) {

@@ -11,6 +11,7 @@ struct RunOptions {
   std::filesystem::path case_path;
   std::filesystem::path output_dir = "results";
   bool quiet = false;
+  std::string command_line;  // recorded in the results' provenance
 };
 
 // Reads the case file and runs the analysis it describes.

@@ -45,6 +45,9 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
 // Volume of the mesh (m^3), by the elements' Gauss rules.
 double mesh_volume(const Mesh& mesh);
 
+// Area of a set of faces (m^2), by the faces' Gauss rules.
+double surface_area(const Mesh& mesh, const std::vector<FaceBlock>& faces);
+
 // Throws Error naming the first element whose Jacobian determinant is not
 // positive at a Gauss point or at a node (inverted or degenerate element).
 void check_element_jacobians(const Mesh& mesh);

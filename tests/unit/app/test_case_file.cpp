@@ -1,0 +1,88 @@
+// Unit tests of case-file reading: schema checks and their error messages.
+#include <gtest/gtest.h>
+
+#include "kinetofem/app/case_file.hpp"
+#include "kinetofem/app/fe_static_job.hpp"
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::app {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    CaseFile::parse(text, "case.toml", fe_static_schema());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kMinimal = "[case]\ntype = \"fe_static\"\n";
+
+TEST(CaseFile, ReadsValuesInSiUnitsAndDefaults) {
+  const CaseFile c = CaseFile::parse(std::string(kMinimal) +
+                                         "[geometry]\nlength_mm = 400\n[material]\nyoungs_modulus_mpa = 70000\n",
+                                     "case.toml", fe_static_schema());
+  EXPECT_DOUBLE_EQ(c.number("geometry.length_mm"), 0.4);
+  EXPECT_DOUBLE_EQ(c.number("material.youngs_modulus_mpa"), 70e9);
+  EXPECT_DOUBLE_EQ(c.number("material.poisson_ratio"), 0.3);  // default
+  EXPECT_EQ(c.integer("mesh.order"), 2);
+  EXPECT_EQ(c.text_value("geometry.kind"), "lever");
+}
+
+TEST(CaseFile, UnknownKeyNamesFileLineAndKey) {
+  const std::string e = error_of(std::string(kMinimal) + "[material]\nyoung = 3\n");
+  EXPECT_NE(e.find("case.toml:4"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key 'material.young'"), std::string::npos) << e;
+  EXPECT_NE(e.find("youngs_modulus_mpa"), std::string::npos) << e;  // lists what is allowed
+}
+
+TEST(CaseFile, OutOfRangeAndMistypedValuesAreErrors) {
+  std::string e = error_of(std::string(kMinimal) + "[material]\npoisson_ratio = 0.5\n");
+  EXPECT_NE(e.find("case.toml:4: key 'material.poisson_ratio' = 0.5 is out of range"), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + "[geometry]\nlength_mm = -5\n");
+  EXPECT_NE(e.find("geometry.length_mm"), std::string::npos) << e;
+  EXPECT_NE(e.find("out of range"), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + "[geometry]\nlength_mm = \"long\"\n");
+  EXPECT_NE(e.find("must be a number"), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + "[geometry]\nlength_mm = nan\n");
+  EXPECT_NE(e.find("not a finite number"), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + "[mesh]\norder = 3\n");
+  EXPECT_NE(e.find("mesh.order"), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + "[[support]]\nset = \"a\"\nfixed = [\"x\", \"w\"]\n");
+  EXPECT_NE(e.find("\"w\""), std::string::npos) << e;
+  e = error_of(std::string(kMinimal) + "[[force]]\nset = \"a\"\ntotal_n = [1, 2]\n");
+  EXPECT_NE(e.find("array of 3 numbers"), std::string::npos) << e;
+}
+
+TEST(CaseFile, SyntaxErrorGivesLineAndColumn) {
+  const std::string e = error_of("[case]\ntype = \"fe_static\n");
+  EXPECT_NE(e.find("case.toml:2:"), std::string::npos) << e;
+  EXPECT_NE(e.find("TOML syntax error"), std::string::npos) << e;
+}
+
+TEST(CaseFile, MissingRequiredKeyIsNamed) {
+  const std::string e = error_of("[material]\npoisson_ratio = 0.3\n");
+  EXPECT_NE(e.find("required key 'case.type'"), std::string::npos) << e;
+}
+
+TEST(CaseFile, MissingFileIsNamed) {
+  try {
+    CaseFile::load("/nonexistent/case.toml", fe_static_schema());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/case.toml: case file does not exist"),
+              std::string::npos);
+  }
+}
+
+TEST(CaseFile, TemplateListsEveryKeyWithItsUnit) {
+  const std::string t = schema_template(fe_static_schema(), "fe_static");
+  EXPECT_NE(t.find("youngs_modulus_mpa = 210000"), std::string::npos) << t;
+  EXPECT_NE(t.find("unit: mm"), std::string::npos);
+  EXPECT_NE(t.find("[[support]]"), std::string::npos);
+  // The template itself is a valid case once the required keys are filled.
+}
+
+}  // namespace
+}  // namespace kinetofem::app
