@@ -1,0 +1,250 @@
+#include "kinetofem/solver/couplings.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/solver/assembly.hpp"
+#include "kinetofem/solver/element_library.hpp"
+
+namespace kinetofem::fem {
+
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+// Calls visit(nodes of face, N at point, x at point, area weight) for every
+// Gauss point of every face.
+template <typename Visit>
+void for_each_face_point(const Mesh& mesh, const std::vector<FaceBlock>& faces, Visit&& visit) {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (const auto& block : faces) {
+    const int n = nodes_per_face(block.type);
+    for (Index f = 0; f < block.size(); ++f) {
+      const auto nodes = block.face(f);
+      Eigen::MatrixXd X(n, 3);
+      for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
+      for (const auto& qp : quadrature(block.type)) {
+        shape_functions(block.type, qp.xi, N, dN);
+        const Eigen::Vector3d t1 = X.transpose() * dN.col(0), t2 = X.transpose() * dN.col(1);
+        const Eigen::Vector3d x = X.transpose() * N;
+        visit(nodes, N, x, qp.weight * t1.cross(t2).norm());
+      }
+    }
+  }
+}
+
+}  // namespace
+
+DistributingCoupling::DistributingCoupling(const Mesh& mesh, const std::string& face_set) {
+  const auto& faces = mesh.face_set(face_set);
+  nodes_ = nodes_of_faces(faces);
+  require(!nodes_.empty(), "distributing coupling: face set '{}' is empty", face_set);
+  std::vector<double> weight_of(size_t(mesh.node_count()), 0.0);
+  for_each_face_point(mesh, faces, [&](std::span<const Index> nodes, const Eigen::VectorXd& N,
+                                       const Eigen::Vector3d&, double dA) {
+    for (Eigen::Index a = 0; a < N.size(); ++a) weight_of[size_t(nodes[size_t(a)])] += N[a] * dA;
+  });
+  const Index n = Index(nodes_.size());
+  weight_.resize(n);
+  centroid_.setZero();
+  for (Index k = 0; k < n; ++k) {
+    // Quadratic faces give corner nodes zero (or slightly negative) consistent
+    // weight; a node set's load must not pull against the resultant.
+    weight_[k] = std::max(0.0, weight_of[size_t(nodes_[size_t(k)])]);
+    centroid_ += weight_[k] * mesh.nodes.row(nodes_[size_t(k)]).transpose();
+  }
+  total_weight_ = weight_.sum();
+  require(total_weight_ > 0, "distributing coupling: face set '{}' has zero area", face_set);
+  centroid_ /= total_weight_;
+  arm_.resize(n, 3);
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  for (Index k = 0; k < n; ++k) {
+    const Eigen::Vector3d r = mesh.nodes.row(nodes_[size_t(k)]).transpose() - centroid_;
+    arm_.row(k) = r.transpose();
+    J += weight_[k] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(J);
+  require(eig.eigenvalues().minCoeff() > 1e-12 * eig.eigenvalues().maxCoeff(),
+          "distributing coupling: the nodes of face set '{}' lie on a line; they cannot carry a "
+          "moment",
+          face_set);
+  polar_inverse_ = J.inverse();
+}
+
+void DistributingCoupling::add(const Eigen::Vector3d& force_n, const Eigen::Vector3d& moment_nm,
+                               const Eigen::Vector3d& reference_point_m,
+                               Eigen::Ref<Eigen::VectorXd> forces) const {
+  const Eigen::Vector3d moment_about_centroid =
+      moment_nm + (reference_point_m - centroid_).cross(force_n);
+  const Eigen::Vector3d theta = polar_inverse_ * moment_about_centroid;
+  for (size_t k = 0; k < nodes_.size(); ++k) {
+    const Eigen::Vector3d r = arm_.row(Index(k)).transpose();
+    forces.segment<3>(3 * nodes_[k]) +=
+        weight_[Index(k)] * (force_n / total_weight_ + theta.cross(r));
+  }
+}
+
+Eigen::Vector3d add_bearing_pressure(const Mesh& mesh, const BoreGeometry& bore,
+                                     const Eigen::Vector3d& force_n,
+                                     Eigen::Ref<Eigen::VectorXd> forces) {
+  const Eigen::Vector3d axis = bore.axis_direction.normalized();
+  const Eigen::Vector3d axial = force_n.dot(axis) * axis;
+  const Eigen::Vector3d radial_force = force_n - axial;
+  const double magnitude = radial_force.norm();
+  if (magnitude == 0.0) return axial;
+  const Eigen::Vector3d direction = radial_force / magnitude;
+  const auto& faces = mesh.face_set(bore.face_set);
+  // Unit radial direction (from the axis outwards, into the material) and
+  // cos(phi) of a point of the bore.
+  auto radial = [&](const Eigen::Vector3d& x) {
+    Eigen::Vector3d r = x - bore.axis_point_m;
+    r -= r.dot(axis) * axis;
+    return Eigen::Vector3d(r.normalized());
+  };
+  // Scale p0 so the discrete resultant equals the force exactly:
+  // p0 * sum(cos(phi) n_r dA) . direction = |F|.
+  double carried = 0.0;
+  for_each_face_point(mesh, faces, [&](std::span<const Index>, const Eigen::VectorXd&,
+                                       const Eigen::Vector3d& x, double dA) {
+    const Eigen::Vector3d n = radial(x);
+    const double c = n.dot(direction);
+    if (c > 0) carried += c * n.dot(direction) * dA;
+  });
+  require(carried > 0, "bearing pressure: bore '{}' has no surface facing the force",
+          bore.face_set);
+  const double p0 = magnitude / carried;
+  for_each_face_point(mesh, faces, [&](std::span<const Index> nodes, const Eigen::VectorXd& N,
+                                       const Eigen::Vector3d& x, double dA) {
+    const Eigen::Vector3d n = radial(x);
+    const double c = n.dot(direction);
+    if (c <= 0) return;
+    const Eigen::Vector3d traction = p0 * c * n;
+    for (Eigen::Index a = 0; a < N.size(); ++a)
+      forces.segment<3>(3 * nodes[size_t(a)]) += N[a] * dA * traction;
+  });
+  return axial;
+}
+
+RigidBodyMotionLoads::RigidBodyMotionLoads(const Mesh& mesh, const IsotropicMaterial& material) {
+  const double rho = material.density_kg_m3;
+  std::vector<LoadCase> basis(12);
+  for (int k = 0; k < 3; ++k) {
+    basis[size_t(k)].name = fmt::format("rho e_{}", k);
+    basis[size_t(k)].body_force = [rho, k](const Eigen::Vector3d&) {
+      return Eigen::Vector3d(rho * Eigen::Vector3d::Unit(k));
+    };
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      basis[size_t(3 + 3 * i + j)].name = fmt::format("rho x_{} e_{}", j, i);
+      basis[size_t(3 + 3 * i + j)].body_force = [rho, i, j](const Eigen::Vector3d& x) {
+        return Eigen::Vector3d(rho * x[j] * Eigen::Vector3d::Unit(i));
+      };
+    }
+  basis_ = assemble_external_forces(mesh, material, basis);
+  // Mass and first moments from the basis: sum over nodes of column e_k's k
+  // components is rho V; of column x_j e_i's i components, rho int x_j dV.
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+  for (Index node = 0; node < mesh.node_count(); ++node) {
+    mass_ += basis_(3 * node, 0);
+    for (int j = 0; j < 3; ++j) first_moment[j] += basis_(3 * node, 3 + j);
+  }
+  if (mass_ > 0) centre_of_mass_ = first_moment / mass_;
+}
+
+Eigen::VectorXd RigidBodyMotionLoads::forces(const Eigen::Vector3d& gravity,
+                                             const Eigen::Vector3d& origin_acceleration,
+                                             const Eigen::Vector3d& omega,
+                                             const Eigen::Vector3d& alpha) const {
+  // b(x) / rho = c + A x with c = g - a_O, A = -(skew(alpha) + skew(omega)^2).
+  const Eigen::Vector3d c = gravity - origin_acceleration;
+  const Eigen::Matrix3d A = -(skew(alpha) + skew(omega) * skew(omega));
+  Eigen::Matrix<double, 12, 1> coefficients;
+  coefficients.head<3>() = c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) coefficients[3 + 3 * i + j] = A(i, j);
+  return basis_ * coefficients;
+}
+
+void resultant(const Mesh& mesh, const Eigen::VectorXd& forces, const Eigen::Vector3d& point,
+               Eigen::Vector3d& force_n, Eigen::Vector3d& moment_nm) {
+  force_n.setZero();
+  moment_nm.setZero();
+  for (Index node = 0; node < mesh.node_count(); ++node) {
+    const Eigen::Vector3d f = forces.segment<3>(3 * node);
+    force_n += f;
+    moment_nm += (mesh.nodes.row(node).transpose() - point).cross(f);
+  }
+}
+
+std::vector<DisplacementSupport> three_two_one_support(const Mesh& mesh,
+                                                       const std::vector<Index>& candidates) {
+  require(candidates.size() >= 3, "3-2-1 support needs at least 3 candidate nodes");
+  auto x = [&](Index node) { return Eigen::Vector3d(mesh.nodes.row(node).transpose()); };
+  // a and b: the extremes along the longest extent of the candidates.
+  Eigen::Vector3d lo = x(candidates[0]), hi = lo;
+  for (Index node : candidates) {
+    lo = lo.cwiseMin(x(node));
+    hi = hi.cwiseMax(x(node));
+  }
+  int k;
+  (hi - lo).maxCoeff(&k);
+  Index a = candidates[0], b = candidates[0];
+  for (Index node : candidates) {
+    if (x(node)[k] < x(a)[k]) a = node;
+    if (x(node)[k] > x(b)[k]) b = node;
+  }
+  // c: farthest from the line ab.
+  const Eigen::Vector3d ab = (x(b) - x(a)).normalized();
+  Index c = candidates[0];
+  double best = -1;
+  for (Index node : candidates) {
+    Eigen::Vector3d d = x(node) - x(a);
+    d -= d.dot(ab) * ab;
+    if (d.norm() > best) {
+      best = d.norm();
+      c = node;
+    }
+  }
+  require(best > 0, "3-2-1 support: the candidate nodes are collinear");
+  // b is held in the two components other than k; c in the component in
+  // which a rotation about ab through a moves it most.
+  std::array<bool, 3> b_fixed = {true, true, true};
+  b_fixed[size_t(k)] = false;
+  const Eigen::Vector3d swing = ab.cross(x(c) - x(a));
+  int m;
+  swing.cwiseAbs().maxCoeff(&m);
+  std::array<bool, 3> c_fixed = {false, false, false};
+  c_fixed[size_t(m)] = true;
+  std::vector<DisplacementSupport> supports = {
+      {"3-2-1 support a", {a}, {true, true, true}, Eigen::Vector3d::Zero()},
+      {"3-2-1 support b", {b}, b_fixed, Eigen::Vector3d::Zero()},
+      {"3-2-1 support c", {c}, c_fixed, Eigen::Vector3d::Zero()}};
+  // The six constraints must remove the six rigid-body modes: the 6 x 6
+  // matrix of the modes at the constrained DoFs must be non-singular.
+  Eigen::Matrix<double, 6, 6> modes;
+  int row = 0;
+  for (const auto& s : supports)
+    for (int comp = 0; comp < 3; ++comp) {
+      if (!s.fixed[size_t(comp)]) continue;
+      const Eigen::Vector3d p = x(s.nodes[0]) - x(a);
+      for (int t = 0; t < 3; ++t) modes(row, t) = comp == t ? 1.0 : 0.0;
+      for (int r = 0; r < 3; ++r) modes(row, 3 + r) = Eigen::Vector3d::Unit(r).cross(p)[comp];
+      ++row;
+    }
+  const double scale = (hi - lo).norm();
+  Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(modes);
+  require(svd.singularValues().minCoeff() > 1e-6 * std::max(1.0, scale),
+          "3-2-1 support: the chosen nodes do not remove all rigid-body modes");
+  return supports;
+}
+
+}  // namespace kinetofem::fem
