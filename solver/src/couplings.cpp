@@ -174,6 +174,41 @@ Eigen::VectorXd RigidBodyMotionLoads::forces(const Eigen::Vector3d& gravity,
   return basis_ * coefficients;
 }
 
+MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& material) {
+  // Moments of order 0, 1, 2 of the volume: V, int x dV, int x x^T dV.
+  double volume = 0.0;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (const auto& block : mesh.blocks) {
+    const int n = nodes_per_element(block.type);
+    for (Index e = 0; e < block.size(); ++e) {
+      const auto nodes = block.element(e);
+      Eigen::MatrixXd X(n, 3);
+      for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
+      for (const auto& qp : load_quadrature(block.type)) {
+        shape_functions(block.type, qp.xi, N, dN);
+        const double dV = qp.weight * (X.transpose() * dN).determinant();
+        const Eigen::Vector3d x = X.transpose() * N;
+        volume += dV;
+        first += dV * x;
+        second += dV * x * x.transpose();
+      }
+    }
+  }
+  MassProperties out;
+  const double rho = material.density_kg_m3;
+  out.mass_kg = rho * volume;
+  if (volume <= 0) return out;
+  out.centre_of_mass_m = first / volume;
+  // Second moment about the centre of mass, then I = tr(S) 1 - S.
+  const Eigen::Matrix3d S =
+      rho * (second - volume * out.centre_of_mass_m * out.centre_of_mass_m.transpose());
+  out.inertia_about_com_kgm2 = S.trace() * Eigen::Matrix3d::Identity() - S;
+  return out;
+}
+
 void resultant(const Mesh& mesh, const Eigen::VectorXd& forces, const Eigen::Vector3d& point,
                Eigen::Vector3d& force_n, Eigen::Vector3d& moment_nm) {
   force_n.setZero();

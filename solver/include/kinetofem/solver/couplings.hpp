@@ -95,6 +95,16 @@ class RigidBodyMotionLoads {
   Eigen::Vector3d centre_of_mass_ = Eigen::Vector3d::Zero();
 };
 
+// Rigid-body mass properties of a meshed part: mass (kg), centre of mass
+// (m, mesh frame) and inertia tensor about the centre of mass (kg m^2), by
+// the elements' load Gauss rules (exact for straight-sided elements).
+struct MassProperties {
+  double mass_kg = 0.0;
+  Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia_about_com_kgm2 = Eigen::Matrix3d::Zero();
+};
+MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& material);
+
 // Resultant force and moment (about `point`) of a nodal force vector (3 N).
 void resultant(const Mesh& mesh, const Eigen::VectorXd& forces, const Eigen::Vector3d& point,
                Eigen::Vector3d& force_n, Eigen::Vector3d& moment_nm);
