@@ -1,0 +1,73 @@
+#pragma once
+// The layout of a kinetofem results file (HDF5): group and dataset names,
+// shared by ResultsWriter and ResultsFile. These names are a stable interface
+// (ParaView state files, h5py scripts and the batch summary depend on them);
+// docs/results.md describes the whole layout. Change them only together with
+// kFormatVersion.
+//
+//   /                                attrs format = "kinetofem-results", format_version
+//   /provenance                      attrs kinetofem_version, git_commit, created_utc,
+//                                    case_path, command_line, units_note; dataset case_text
+//   /bodies/<body>/mesh/nodes                          (N, 3) m
+//   /bodies/<body>/mesh/blocks/block_<i>/connectivity      (E_i, n) Gmsh order
+//   /bodies/<body>/mesh/blocks/block_<i>/connectivity_vtk  (E_i, n) VTK/XDMF order
+//   /bodies/<body>/mesh/xdmf_mixed_topology            (only for bodies with > 1 block)
+//   /bodies/<body>/mesh/{node_sets,element_sets}/<set>, face_sets/<set>/block_<i>/connectivity
+//   /bodies/<body>/static/<field>                      (N, c)   nodal fields
+//   /bodies/<body>/element_fields/<field>              (E, c)   one row per element
+//   /bodies/<body>/series/time                         (T)      s
+//   /bodies/<body>/series/<field>                      (T, N, c) chunked per time step
+//   /bodies/<body>/envelopes/<field>/value, /step      (N, c), step: index into series/time
+//   /mechanism/time                                    (T_m)    s
+//   /mechanism/<quantity>                              (T_m, c)
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/solver/mesh.hpp"
+
+namespace kinetofem::post {
+
+inline constexpr const char* kFormatName = "kinetofem-results";
+inline constexpr std::int64_t kFormatVersion = 1;
+
+// Row-major values of a field: one row per node (or element, or time), one column per component.
+using FieldMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using IndexMatrix = Eigen::Matrix<fem::Index, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Component names for the usual fields (attribute `components` of a dataset).
+inline const std::vector<std::string> kVectorComponents = {"x", "y", "z"};
+// Stress/strain in Voigt order; XDMF's Tensor6 and ParaView use the same order (zx = xz).
+inline const std::vector<std::string> kVoigtComponents = {"xx", "yy", "zz", "xy", "yz", "zx"};
+inline const std::vector<std::string> kPrincipalComponents = {"1", "2", "3"};
+
+namespace layout {
+inline constexpr const char* kProvenance = "provenance";
+inline constexpr const char* kCaseText = "case_text";
+inline constexpr const char* kBodies = "bodies";
+inline constexpr const char* kMesh = "mesh";
+inline constexpr const char* kNodes = "nodes";
+inline constexpr const char* kBlocks = "blocks";
+inline constexpr const char* kConnectivity = "connectivity";
+inline constexpr const char* kConnectivityVtk = "connectivity_vtk";
+inline constexpr const char* kMixedTopology = "xdmf_mixed_topology";
+inline constexpr const char* kNodeSets = "node_sets";
+inline constexpr const char* kFaceSets = "face_sets";
+inline constexpr const char* kElementSets = "element_sets";
+inline constexpr const char* kStatic = "static";
+inline constexpr const char* kElementFields = "element_fields";
+inline constexpr const char* kSeries = "series";
+inline constexpr const char* kTime = "time";
+inline constexpr const char* kEnvelopes = "envelopes";
+inline constexpr const char* kEnvelopeValue = "value";
+inline constexpr const char* kEnvelopeStep = "step";
+inline constexpr const char* kMechanism = "mechanism";
+inline constexpr const char* kDimensionless = "1";
+
+// "block_<i>", the group of element block i (blocks keep their order).
+std::string block_name(size_t index);
+}  // namespace layout
+
+}  // namespace kinetofem::post

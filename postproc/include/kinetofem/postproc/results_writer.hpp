@@ -1,0 +1,155 @@
+#pragma once
+// ResultsWriter — writes the results of one run: an HDF5 file (<name>.h5) and
+// beside it an XDMF 3 file (<name>.xdmf) that ParaView opens.
+//
+// Layout: results_layout.hpp and docs/results.md. Units: SI; every dataset
+// carries a `units` attribute, given by the caller for fields.
+//
+// Atomic: everything is written to <name>.h5.tmp; commit() closes it, writes
+// <name>.xdmf.tmp and renames both over the final names. A writer destroyed
+// without commit() (an exception unwinding, an early return) removes its
+// temporary files, so a results file under the final name is always complete,
+// and an older one is left untouched until the new one is committed. (A
+// process killed by SIGKILL cannot clean up: it leaves <name>.h5.tmp, never a
+// broken <name>.h5.)
+//
+// Memory: time-series fields go to disk one step at a time (chunked per step,
+// extensible in time), so a 100-step series of a 1 M-node body needs one
+// step's matrix in memory, not the series.
+//
+// Usage (one body, a static solution and a time series):
+//
+//   post::Provenance prov{.case_path = path, .case_text = text,
+//                         .command_line = post::command_line_of(argc, argv)};
+//   post::ResultsWriter writer("out/lever_run.h5", prov);
+//   post::BodyWriter& lever = writer.add_body("lever", mesh);
+//   lever.write_static("displacement", "m", U, post::kVectorComponents);
+//   lever.write_static("stress", "Pa", S, post::kVoigtComponents);
+//   lever.begin_series({{"displacement", "m", 3, post::kVectorComponents},
+//                       {"von_mises", "Pa", 1}});
+//   for (int k = 0; k < n; ++k) {
+//     ...solve at time t[k]...
+//     lever.write_step(t[k], {{"displacement", U_k}, {"von_mises", vm_k}});
+//   }
+//   lever.write_envelope("von_mises", "Pa", vm_max, vm_max_step);
+//   writer.set_mechanism_time(t_mech);
+//   writer.write_history("drive_torque", "N*m", torque);  // (T_m x 1)
+//   writer.commit();
+//
+// Names of bodies, fields, sets and histories: letters, digits, '_', '-', '.'
+// (they become HDF5 link names and XDMF attribute names).
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/postproc/provenance.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
+#include "kinetofem/solver/mesh.hpp"
+
+namespace kinetofem::post {
+
+namespace detail {
+struct FileState;
+}
+
+// One field of a time series: name, unit, number of components, component names.
+struct SeriesField {
+  std::string name;
+  std::string units;
+  int components = 1;
+  std::vector<std::string> component_names = {};
+};
+
+// A field's values for one call of write_step. Holds a reference (an Eigen::Ref)
+// to the caller's matrix: use it inside the call's braces only.
+struct StepValues {
+  std::string name;
+  Eigen::Ref<const FieldMatrix> values;
+};
+
+// Writes the results of one body (one FE mesh). Made by ResultsWriter::add_body,
+// which owns it; the reference stays valid until the writer is destroyed.
+class BodyWriter {
+ public:
+  ~BodyWriter();
+  BodyWriter(const BodyWriter&) = delete;
+  BodyWriter& operator=(const BodyWriter&) = delete;
+
+  const std::string& name() const { return name_; }
+  fem::Index node_count() const { return node_count_; }
+  fem::Index element_count() const { return element_count_; }
+
+  // A nodal field, N x c (N = node count), at /bodies/<body>/static/<name>.
+  void write_static(const std::string& name, const std::string& units,
+                    const Eigen::Ref<const FieldMatrix>& values,
+                    const std::vector<std::string>& component_names = {});
+  // An element field, E x c (E = element count, elements in block order).
+  void write_element_field(const std::string& name, const std::string& units,
+                           const Eigen::Ref<const FieldMatrix>& values,
+                           const std::vector<std::string>& component_names = {});
+
+  // Declares the fields of the body's time series (once per body).
+  void begin_series(const std::vector<SeriesField>& fields);
+  // Writes output time `time_s` (s, strictly increasing): every declared field,
+  // each N x c. Returns the step index k (0, 1, ...).
+  fem::Index write_step(double time_s, std::initializer_list<StepValues> fields);
+  fem::Index steps_written() const;
+
+  // Per-node extreme of a field over the series: values N x c and, for each
+  // entry, the step (index into series/time) where it occurred.
+  // `operation` names the extreme ("max", "min", "max_abs").
+  void write_envelope(const std::string& name, const std::string& units,
+                      const Eigen::Ref<const FieldMatrix>& values,
+                      const Eigen::Ref<const IndexMatrix>& step, const std::string& operation = "max");
+
+ private:
+  friend class ResultsWriter;
+  struct State;
+  BodyWriter(detail::FileState& file, const std::string& name, const fem::Mesh& mesh);
+  void check_open() const;
+
+  detail::FileState& file_;
+  std::string name_;
+  fem::Index node_count_ = 0;
+  fem::Index element_count_ = 0;
+  std::unique_ptr<State> state_;
+};
+
+class ResultsWriter {
+ public:
+  // Starts <path>.tmp (path ends in .h5; the XDMF file is path with .xdmf).
+  // Throws Error naming the directory if it does not exist or cannot be written.
+  ResultsWriter(const std::filesystem::path& path, const Provenance& provenance);
+  // Without commit(): removes the temporary files; never throws.
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  const std::filesystem::path& path() const;
+  std::filesystem::path xdmf_path() const;
+
+  // Writes the body's mesh (validated first) and returns its writer.
+  BodyWriter& add_body(const std::string& name, const fem::Mesh& mesh);
+
+  // Time histories of the mechanism: the time grid (s) first, then any number
+  // of quantities, each T_m x c, at /mechanism/<name>.
+  void set_mechanism_time(const std::vector<double>& time_s);
+  void write_history(const std::string& name, const std::string& units,
+                     const Eigen::Ref<const FieldMatrix>& values,
+                     const std::vector<std::string>& component_names = {});
+
+  // Finishes the file and the XDMF and moves them to their final names.
+  // Throws if a time step is incomplete; after commit() nothing more can be written.
+  void commit();
+  bool committed() const;
+
+ private:
+  std::unique_ptr<detail::FileState> file_;
+  std::vector<std::unique_ptr<BodyWriter>> bodies_;
+};
+
+}  // namespace kinetofem::post
