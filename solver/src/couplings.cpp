@@ -109,26 +109,36 @@ Eigen::Vector3d add_bearing_pressure(const Mesh& mesh, const BoreGeometry& bore,
     r -= r.dot(axis) * axis;
     return Eigen::Vector3d(r.normalized());
   };
-  // Scale p0 so the discrete resultant equals the force exactly:
-  // p0 * sum(cos(phi) n_r dA) . direction = |F|.
-  double carried = 0.0;
-  for_each_face_point(mesh, faces, [&](std::span<const Index>, const Eigen::VectorXd&,
-                                       const Eigen::Vector3d& x, double dA) {
-    const Eigen::Vector3d n = radial(x);
-    const double c = n.dot(direction);
-    if (c > 0) carried += c * n.dot(direction) * dA;
-  });
-  require(carried > 0, "bearing pressure: bore '{}' has no surface facing the force",
-          bore.face_set);
-  const double p0 = magnitude / carried;
+  // Pressure p = (a . n_r)+ : a cosine distribution about the direction of
+  // the vector a. With a = p0 * direction the discrete resultant would miss
+  // the force by the asymmetry of the mesh; instead a solves
+  //   G(a) a = F_radial,  G(a) = int_{a . n_r > 0} n_r n_r^T dA,
+  // iterated until the loaded half stops changing, so the resultant is exact.
+  Eigen::Vector3d a = radial_force;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+    for_each_face_point(mesh, faces, [&](std::span<const Index>, const Eigen::VectorXd&,
+                                         const Eigen::Vector3d& x, double dA) {
+      const Eigen::Vector3d n = radial(x);
+      if (n.dot(a) > 0) G += dA * n * n.transpose();
+    });
+    require(G.trace() > 0, "bearing pressure: bore '{}' has no surface facing the force",
+            bore.face_set);
+    G += G.trace() * axis * axis.transpose();  // no stiffness along the axis: keep G invertible
+    const Eigen::Vector3d next = G.ldlt().solve(radial_force);
+    const bool settled = (next - a).norm() <= 1e-14 * next.norm() ||
+                         (iteration > 0 && (next.normalized() - a.normalized()).norm() < 1e-15);
+    a = next;
+    if (settled) break;
+  }
+  (void)direction;
   for_each_face_point(mesh, faces, [&](std::span<const Index> nodes, const Eigen::VectorXd& N,
                                        const Eigen::Vector3d& x, double dA) {
     const Eigen::Vector3d n = radial(x);
-    const double c = n.dot(direction);
-    if (c <= 0) return;
-    const Eigen::Vector3d traction = p0 * c * n;
-    for (Eigen::Index a = 0; a < N.size(); ++a)
-      forces.segment<3>(3 * nodes[size_t(a)]) += N[a] * dA * traction;
+    const double p = n.dot(a);
+    if (p <= 0) return;
+    for (Eigen::Index k = 0; k < N.size(); ++k)
+      forces.segment<3>(3 * nodes[size_t(k)]) += N[k] * dA * p * n;
   });
   return axial;
 }

@@ -18,8 +18,11 @@
 //   the force with a pressure p = p0 cos(phi), phi measured from the force's
 //   direction in the plane normal to the pin axis, p0 = 2 F / (pi R L) for a
 //   bore of radius R and length L; the traction is radial (normal to the
-//   bore). Closer to the real contact stress near the bore, but carries only
-//   the force component normal to the pin axis (no axial force, no moment).
+//   bore). On the discrete bore the cosine's amplitude vector is solved so
+//   that the resultant equals the force exactly (its direction turns by the
+//   mesh's asymmetry, a fraction of a degree). Closer to the real contact
+//   stress near the bore, but carries only the force component normal to the
+//   pin axis (no axial force, no moment).
 //
 // Both produce full-length nodal force vectors (3 N) in the mesh's frame.
 #include <vector>

@@ -1,0 +1,176 @@
+#include "kinetofem/loads/link_loads.hpp"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::loads {
+
+namespace {
+
+Eigen::Vector3d lift(const Eigen::Vector2d& v) { return Eigen::Vector3d(v.x(), v.y(), 0.0); }
+
+// World -> body rotation of a planar body at angle theta (R^T).
+Eigen::Matrix3d to_body(double theta) {
+  return Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+}  // namespace
+
+void assign_mass_properties(mech::Body& body, const fem::FeModel& model) {
+  const fem::MassProperties mp = fem::mass_properties(model.mesh, model.material);
+  body.mass_kg = mp.mass_kg;
+  body.com_body = mp.centre_of_mass_m.head<2>();
+  body.inertia_kgm2 = mp.inertia_about_com_kgm2(2, 2);
+}
+
+LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& model,
+                     double equilibrium_tolerance)
+    : link_(link),
+      tolerance_(equilibrium_tolerance),
+      motion_loads_((require(link.model != nullptr, "link '{}' has no FE model", link.body),
+                     link.model->mesh),
+                    link.model->material) {
+  const fem::Mesh& mesh = link.model->mesh;
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    if (model.bodies[b].name == link.body) body_index_ = int(b);
+  require(body_index_ >= 0, "link '{}': the mechanism has no body of that name", link.body);
+  const mech::Body& body = model.bodies[size_t(body_index_)];
+  gravity_world_ = lift(model.gravity);
+  length_scale_ = std::max(1e-3, (mesh.nodes.colwise().maxCoeff() - mesh.nodes.colwise().minCoeff()).norm());
+
+  for (const auto& attachment : link.joints) {
+    Attached a;
+    a.joint = attachment.joint;
+    a.distribution = attachment.distribution;
+    for (size_t j = 0; j < model.joints.size(); ++j)
+      if (model.joints[j].name == attachment.joint) a.joint_index = int(j);
+    require(a.joint_index >= 0, "link '{}': the mechanism has no joint '{}'", link.body,
+            attachment.joint);
+    const mech::Joint& joint = model.joints[size_t(a.joint_index)];
+    require(joint.body_i == link.body || joint.body_j == link.body,
+            "link '{}': joint '{}' does not act on it (it joins '{}' and '{}')", link.body,
+            joint.name, joint.body_i, joint.body_j);
+    a.on_i = joint.body_i == link.body;
+    const std::string& point = a.on_i ? joint.point_i : joint.point_j;
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();
+    if (point != "origin") {
+      auto it = body.points.find(point);
+      require(it != body.points.end(), "link '{}': joint '{}' names point '{}' the body lacks",
+              link.body, joint.name, point);
+      p = it->second;
+    }
+    a.bore = {attachment.face_set, lift(p), Eigen::Vector3d::UnitZ()};
+    if (a.distribution == BoreLoad::BearingPressure)
+      require(joint.type == mech::JointType::Revolute,
+              "link '{}': joint '{}': a bearing pressure needs a revolute (pin) joint", link.body,
+              joint.name);
+    mesh.face_set(attachment.face_set);  // throws naming the sets present
+    a.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    joints_.push_back(std::move(a));
+  }
+  for (const auto& attachment : link.point_masses) {
+    Mass m;
+    m.name = attachment.point_mass;
+    bool found = false;
+    for (const auto& pm : body.point_masses)
+      if (pm.name == attachment.point_mass) {
+        m.mass_kg = pm.mass_kg;
+        m.position_body = lift(pm.position_body);
+        found = true;
+      }
+    require(found, "link '{}': the body carries no point mass '{}'", link.body,
+            attachment.point_mass);
+    m.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    masses_.push_back(std::move(m));
+  }
+  for (const auto& attachment : link.drives) {
+    Drive d;
+    d.name = attachment.drive;
+    int index = 0;
+    const mech::RelativeCoordinate* coordinate = nullptr;
+    for (const auto& drive : model.motion_drives) {
+      if (drive.name == d.name) {
+        d.drive_index = index;
+        coordinate = &drive.coordinate;
+      }
+      ++index;
+    }
+    for (const auto& drive : model.force_drives) {
+      if (drive.name == d.name) {
+        d.drive_index = index;
+        coordinate = &drive.coordinate;
+      }
+      ++index;
+    }
+    require(coordinate != nullptr, "link '{}': the mechanism has no drive '{}'", link.body, d.name);
+    require(coordinate->type == mech::CoordinateType::Angle,
+            "link '{}': drive '{}' is not a torque drive", link.body, d.name);
+    require(coordinate->body_i == link.body || coordinate->body_j == link.body,
+            "link '{}': drive '{}' does not act on it", link.body, d.name);
+    d.on_j = coordinate->body_j == link.body;
+    d.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    drives_.push_back(std::move(d));
+  }
+}
+
+LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
+  const fem::Mesh& mesh = link_.model->mesh;
+  const mech::BodyFrame& state = frame.bodies.at(size_t(body_index_));
+  const double theta = state.q.z();
+  const Eigen::Matrix3d R_T = to_body(theta);
+  const Eigen::Vector3d omega(0, 0, state.q_dot.z()), alpha(0, 0, state.q_ddot.z());
+  const Eigen::Vector3d origin_world = lift(state.q.head<2>());
+  const Eigen::Vector3d a_origin_world = lift(state.q_ddot.head<2>());
+
+  LinkLoadResult out;
+  out.forces = motion_loads_.forces(R_T * gravity_world_, R_T * a_origin_world, omega, alpha);
+  double magnitude = motion_loads_.mass_kg() *
+                     (gravity_world_.norm() + a_origin_world.norm() +
+                      length_scale_ * (alpha.norm() + omega.squaredNorm()));
+
+  for (const auto& a : joints_) {
+    const mech::JointFrame& jf = frame.joints.at(size_t(a.joint_index));
+    const mech::Reaction& r = a.on_i ? jf.on_i : jf.on_j;
+    const Eigen::Vector3d force = lift(r.force_body);
+    const Eigen::Vector3d point = R_T * (lift(r.point_world) - origin_world);
+    const Eigen::Vector3d moment(0, 0, r.moment_Nm);
+    if (a.distribution == BoreLoad::BearingPressure) {
+      fem::BoreGeometry bore = a.bore;
+      bore.axis_point_m = point;
+      fem::add_bearing_pressure(mesh, bore, force, out.forces);
+    } else {
+      a.coupling->add(force, moment, point, out.forces);
+    }
+    magnitude += force.norm() + std::abs(r.moment_Nm) / length_scale_;
+  }
+  for (const auto& m : masses_) {
+    const Eigen::Vector3d r_world = R_T.transpose() * m.position_body;
+    const Eigen::Vector3d a_world =
+        a_origin_world + alpha.cross(r_world) + omega.cross(omega.cross(r_world));
+    const Eigen::Vector3d force = R_T * (m.mass_kg * (gravity_world_ - a_world));
+    m.coupling->add(force, Eigen::Vector3d::Zero(), m.position_body, out.forces);
+    magnitude += force.norm();
+  }
+  for (const auto& d : drives_) {
+    const double effort = frame.drives.at(size_t(d.drive_index)).effort;
+    const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
+    d.coupling->add(Eigen::Vector3d::Zero(), moment, d.coupling->centroid(), out.forces);
+    magnitude += std::abs(effort) / length_scale_;
+  }
+
+  Eigen::Vector3d F, M;
+  fem::resultant(mesh, out.forces, Eigen::Vector3d::Zero(), F, M);
+  out.equilibrium_residual =
+      magnitude > 0 ? std::max(F.norm(), M.norm() / length_scale_) / magnitude : 0.0;
+  if (!(out.equilibrium_residual <= tolerance_))
+    fail("link '{}' at t = {:.6g} s: the transferred loads are out of equilibrium by {:.2e} of "
+         "their magnitude (resultant {:.4g} N, {:.4g} N m; tolerance {:.0e}): the multibody body "
+         "and the FE model disagree in mass properties, or a load is missing",
+         link_.body, frame.t, out.equilibrium_residual, F.norm(), M.norm(), tolerance_);
+  return out;
+}
+
+}  // namespace kinetofem::loads
