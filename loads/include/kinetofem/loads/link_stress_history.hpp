@@ -1,0 +1,59 @@
+#pragma once
+// Stress and deformation of one link over the whole motion.
+//
+// The link's stiffness (body frame, free body held by a statically
+// determinate 3-2-1 support) is assembled and factorized once; the loads of
+// all output times are solved as blocks of right-hand sides. Each step's
+// displacement (elastic, body frame, m) and nodal stresses (Pa) are handed to
+// a callback (to stream them to the results file) and folded into the
+// envelope: per node the maximum von Mises stress and displacement magnitude
+// over the motion and the step where each occurs.
+//
+// The support's six reactions are computed at every step from K u - f and
+// must vanish (the loads are self-equilibrated): above `reaction_tolerance`
+// of the largest nodal load it is an Error naming link and time.
+#include <functional>
+#include <vector>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/loads/link_loads.hpp"
+#include "kinetofem/solver/cholmod_solver.hpp"
+#include "kinetofem/solver/stress_recovery.hpp"
+
+namespace kinetofem::loads {
+
+struct LinkStressOptions {
+  int block_size = 32;  // right-hand sides per block solve
+  double reaction_tolerance = 1e-6;
+  fem::CholmodOptions solver;
+};
+
+struct LinkEnvelope {
+  Eigen::VectorXd max_von_mises_pa;            // per node
+  Eigen::VectorXi max_von_mises_step;          // per node, index into the frames
+  Eigen::VectorXd max_displacement_m;          // per node, magnitude
+  Eigen::VectorXi max_displacement_step;
+  // The critical instant and place.
+  double peak_von_mises_pa = 0.0;
+  fem::Index peak_von_mises_node = 0;
+  int peak_von_mises_step = 0;
+  double peak_displacement_m = 0.0;
+  fem::Index peak_displacement_node = 0;
+  int peak_displacement_step = 0;
+  double worst_equilibrium_residual = 0.0;
+  double worst_support_reaction = 0.0;  // relative to the largest nodal load
+  fem::CholmodStatistics solver;
+  double assembly_seconds = 0.0, solve_seconds = 0.0, recovery_seconds = 0.0;
+};
+
+using StepCallback = std::function<void(std::size_t step, const fem::DisplacementField& displacement,
+                                        const fem::NodalStress& stress)>;
+
+// `supported_model`: the link's FE model with its 3-2-1 support (see
+// fem::three_two_one_support); `loads` built for the same mesh.
+LinkEnvelope analyse_link_over_motion(const fem::FeModel& supported_model, const LinkLoads& loads,
+                                      const std::vector<mech::Frame>& frames, const Log& log,
+                                      const LinkStressOptions& options = {},
+                                      const StepCallback& on_step = {});
+
+}  // namespace kinetofem::loads
