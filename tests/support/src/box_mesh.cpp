@@ -22,6 +22,7 @@ fem::Mesh box_mesh(const BoxMeshOptions& options) {
   block.face_names = {"x0", "x1", "y0", "y1", "z0", "z1"};
   block.grading_ratio = options.grading_ratio;
   block.random_perturbation = options.random_perturbation;
+  block.mid_node_perturbation = options.mid_node_perturbation;
   block.seed = options.seed;
   fem::Mesh mesh = structured_block_mesh(block);
   if (options.smooth_map)

@@ -4,6 +4,9 @@
 #include <map>
 #include <tuple>
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/solver/element_library.hpp"
 

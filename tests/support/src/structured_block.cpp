@@ -5,6 +5,9 @@
 #include <random>
 #include <vector>
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::testing {
@@ -85,6 +88,9 @@ fem::Mesh structured_block_mesh(const StructuredBlock& block) {
   require(block.random_perturbation >= 0 && block.random_perturbation < 0.5,
           "structured block: random_perturbation = {} outside [0, 0.5)",
           block.random_perturbation);
+  require(block.mid_node_perturbation >= 0 && block.mid_node_perturbation < 0.5,
+          "structured block: mid_node_perturbation = {} outside [0, 0.5)",
+          block.mid_node_perturbation);
 
   const int r = is_quadratic(block.type) ? 2 : 1;
   std::array<std::vector<double>, 3> param;
@@ -177,29 +183,63 @@ fem::Mesh structured_block_mesh(const StructuredBlock& block) {
   for (auto& n : node_of)
     if (n == 0) n = node_count++;
 
-  std::mt19937_64 random(block.seed);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  // Random shifts in parameter space. A point moves only along the
+  // directions in which it is off the boundary, so boundary nodes slide
+  // within their faces and edges. Cell corners move by up to f times the
+  // local cell size. The other points of a quadratic lattice are midpoints of
+  // element edges (cell edges, and the Kuhn diagonals from a face's or cell's
+  // lowest corner to its highest): they take the mean shift of the edge's two
+  // ends, so edges stay straight, plus an own shift of up to g times half the
+  // cell size, which curves them. Every lattice point draws, used or not, so
+  // the sequence does not depend on the element type's node subset.
+  std::vector<Eigen::Vector3d> shift(size_t(lattice_count), Eigen::Vector3d::Zero());
+  if (block.random_perturbation > 0 || block.mid_node_perturbation > 0) {
+    std::mt19937_64 random(block.seed);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    for (int k = 0; k < size[2]; ++k)
+      for (int j = 0; j < size[1]; ++j)
+        for (int i = 0; i < size[0]; ++i) {
+          const Lattice p = {i, j, k};
+          const bool corner = p[0] % r == 0 && p[1] % r == 0 && p[2] % r == 0;
+          auto& s = shift[size_t(lattice_index(p))];
+          for (size_t d = 0; d < 3; ++d) {
+            const double draw = uniform(random);
+            if (p[d] == 0 || p[d] == size[d] - 1) continue;
+            const int step = (p[d] % r == 0) ? r : 1;
+            const size_t at = size_t(p[d]);
+            const double spacing = std::min(param[d][at] - param[d][at - size_t(step)],
+                                            param[d][at + size_t(step)] - param[d][at]);
+            s[Eigen::Index(d)] =
+                (corner ? block.random_perturbation : block.mid_node_perturbation) * spacing * draw;
+          }
+        }
+    if (r == 2) {
+      const std::vector<Eigen::Vector3d> own = shift;
+      for (int k = 0; k < size[2]; ++k)
+        for (int j = 0; j < size[1]; ++j)
+          for (int i = 0; i < size[0]; ++i) {
+            const Lattice p = {i, j, k};
+            const Lattice o = {p[0] % 2, p[1] % 2, p[2] % 2};
+            if (o[0] + o[1] + o[2] == 0) continue;
+            const Lattice lo = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+            const Lattice hi = {p[0] + o[0], p[1] + o[1], p[2] + o[2]};
+            shift[size_t(lattice_index(p))] = 0.5 * (own[size_t(lattice_index(lo))] +
+                                                     own[size_t(lattice_index(hi))]) +
+                                              own[size_t(lattice_index(p))];
+          }
+    }
+  }
   mesh.nodes.resize(node_count, 3);
   for (int k = 0; k < size[2]; ++k)
     for (int j = 0; j < size[1]; ++j)
       for (int i = 0; i < size[0]; ++i) {
         const Lattice p = {i, j, k};
+        const Index node = node_of[size_t(lattice_index(p))];
+        if (node < 0) continue;
         Eigen::Vector3d uvw;
         for (size_t d = 0; d < 3; ++d) uvw[Eigen::Index(d)] = param[d][size_t(p[d])];
-        // A point moves only along the directions in which it is off the
-        // boundary, so boundary nodes slide within their faces and edges.
-        // Every lattice point draws, used or not, so the sequence does not
-        // depend on the element type's node subset.
-        for (size_t d = 0; d < 3 && block.random_perturbation > 0; ++d) {
-          const double shift = uniform(random);
-          if (p[d] > 0 && p[d] < size[d] - 1) {
-            const double spacing = std::min(param[d][size_t(p[d])] - param[d][size_t(p[d]) - 1],
-                                            param[d][size_t(p[d]) + 1] - param[d][size_t(p[d])]);
-            uvw[Eigen::Index(d)] += block.random_perturbation * spacing * shift;
-          }
-        }
-        const Index node = node_of[size_t(lattice_index(p))];
-        if (node >= 0) mesh.nodes.row(node) = block.mapping(uvw).transpose();
+        uvw += shift[size_t(lattice_index(p))];
+        mesh.nodes.row(node) = block.mapping(uvw).transpose();
       }
 
   for (Index& p : elements.connectivity) p = node_of[size_t(p)];

@@ -9,9 +9,10 @@
 // "boundary" (all boundary nodes).
 //
 // Distortion, both optional:
-//   random_perturbation  nodes moved at random (fraction of the lattice
-//                        spacing, see StructuredBlock); boundary nodes slide
-//                        within their faces, so the six faces stay plane;
+//   random_perturbation, mid_node_perturbation
+//                        nodes moved at random (see StructuredBlock);
+//                        boundary nodes slide within their faces, so the six
+//                        faces stay plane;
 //   smooth_map           applied to every node after the box is built (e.g. a
 //                        sine warp); the caller keeps it orientation-preserving.
 #include <array>
@@ -29,7 +30,8 @@ struct BoxMeshOptions {
   std::array<int, 3> divisions = {1, 1, 1};
   fem::ElementType type = fem::ElementType::Hex8;
   std::array<double, 3> grading_ratio = {1.0, 1.0, 1.0};
-  double random_perturbation = 0.0;
+  double random_perturbation = 0.0;    // see StructuredBlock
+  double mid_node_perturbation = 0.0;  // see StructuredBlock (curves quadratic edges)
   std::uint64_t seed = 1;
   std::function<Eigen::Vector3d(const Eigen::Vector3d& x)> smooth_map;  // optional
 };

@@ -18,12 +18,16 @@
 // point of a cell is the mean of its two end parameters (a straight edge keeps
 // its mid node at the midpoint).
 //
-// Distortion: with random_perturbation = f > 0, each lattice point moves by a
-// uniform random amount in [-f, f] times the local lattice spacing along each
+// Distortion: with random_perturbation = f > 0, each cell corner moves by a
+// uniform random amount in [-f, f] times the local cell size along each
 // parameter direction in which it is not on the block's boundary, before the
 // mapping (a pseudo-random sequence fixed by `seed`): interior nodes move
 // freely, face nodes slide within their face, edge nodes along their edge,
-// corners stay. f <= 0.2 keeps every element valid.
+// block corners stay. The mid-edge points of quadratic elements follow the
+// mean shift of their edge's two ends (edges stay straight in parameter
+// space) plus, with mid_node_perturbation = g > 0, an own random shift of up
+// to g times half the cell size (curved edges). f <= 0.2 and g <= 0.1 keep
+// every element valid.
 //
 // Named sets created (names from face_names, in the order u=0, u=1, v=0,
 // v=1, w=0, w=1):
@@ -55,7 +59,8 @@ struct StructuredBlock {
   fem::ElementType type = fem::ElementType::Hex8;
   std::array<std::string, 6> face_names = {"u0", "u1", "v0", "v1", "w0", "w1"};
   std::array<double, 3> grading_ratio = {1.0, 1.0, 1.0};  // last / first cell size, > 0
-  double random_perturbation = 0.0;  // fraction of the lattice spacing, 0 <= f < 0.5
+  double random_perturbation = 0.0;    // corners: fraction of the cell size, 0 <= f < 0.5
+  double mid_node_perturbation = 0.0;  // quadratic mid nodes: fraction of half a cell, 0 <= g < 0.5
   std::uint64_t seed = 1;
 };
 
