@@ -192,7 +192,7 @@ AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial&
   Index first = 0;
   for (const auto& block : mesh.blocks) {
     detail::dispatch_block(block.type, [&]<int NPE>() {
-      const RuleTable<NPE> rule(block.type, quadrature(block.type));
+      const detail::StiffnessRules<NPE> rules(block.type);
 #pragma omp parallel
       {
         Eigen::Matrix<double, 3 * NPE, 3 * NPE> Ke;
@@ -202,7 +202,8 @@ AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial&
         for (Index e = 0; e < block.size(); ++e) {
           const auto nodes = block.element(e);
           const auto X = detail::element_coordinates<NPE>(mesh, nodes);
-          const double min_det = detail::element_stiffness<NPE>(X, rule, lambda, mu, Ke);
+          const double min_det =
+              detail::element_stiffness<NPE>(X, rules.for_element(X), lambda, mu, Ke);
           if (!(min_det > 1e-12 * size_cubed<NPE>(X))) {
             failure.record(first + e, jacobian_message(first + e, block.type, min_det));
             continue;
@@ -399,7 +400,7 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
   detail::lame(material.youngs_modulus_pa, material.poisson_ratio, lambda, mu);
   for (const auto& block : mesh.blocks) {
     detail::dispatch_block(block.type, [&]<int NPE>() {
-      const RuleTable<NPE> rule(block.type, quadrature(block.type));
+      const detail::StiffnessRules<NPE> rules(block.type);
 #pragma omp parallel
       {
         Eigen::Matrix<double, 3 * NPE, 3 * NPE> Ke;
@@ -408,7 +409,7 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
         for (Index e = 0; e < block.size(); ++e) {
           const auto nodes = block.element(e);
           const auto X = detail::element_coordinates<NPE>(mesh, nodes);
-          detail::element_stiffness<NPE>(X, rule, lambda, mu, Ke);
+          detail::element_stiffness<NPE>(X, rules.for_element(X), lambda, mu, Ke);
           for (int a = 0; a < NPE; ++a) ue.template segment<3>(3 * a) = displacement.row(nodes[size_t(a)]).transpose();
           const Eigen::Matrix<double, 3 * NPE, 1> fe = Ke * ue;
           for (int a = 0; a < NPE; ++a)
@@ -418,6 +419,37 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
     });
   }
   return R;
+}
+
+Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& material,
+                                   const DisplacementField& displacement,
+                                   const std::vector<Index>& nodes) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * Index(nodes.size()));
+  double lambda, mu;
+  detail::lame(material.youngs_modulus_pa, material.poisson_ratio, lambda, mu);
+  for (const auto& block : mesh.blocks) {
+    detail::dispatch_block(block.type, [&]<int NPE>() {
+      const detail::StiffnessRules<NPE> rules(block.type);
+      Eigen::Matrix<double, 3 * NPE, 3 * NPE> Ke;
+      Eigen::Matrix<double, 3 * NPE, 1> ue;
+      for (Index e = 0; e < block.size(); ++e) {
+        const auto element = block.element(e);
+        bool touches = false;
+        for (Index node : element)
+          touches = touches || std::find(nodes.begin(), nodes.end(), node) != nodes.end();
+        if (!touches) continue;
+        const auto X = detail::element_coordinates<NPE>(mesh, element);
+        detail::element_stiffness<NPE>(X, rules.for_element(X), lambda, mu, Ke);
+        for (int a = 0; a < NPE; ++a)
+          ue.template segment<3>(3 * a) = displacement.row(element[size_t(a)]).transpose();
+        const Eigen::Matrix<double, 3 * NPE, 1> fe = Ke * ue;
+        for (int a = 0; a < NPE; ++a)
+          for (size_t k = 0; k < nodes.size(); ++k)
+            if (element[size_t(a)] == nodes[k]) out.segment<3>(3 * Index(k)) += fe.template segment<3>(3 * a);
+      }
+    });
+  }
+  return out;
 }
 
 double surface_area(const Mesh& mesh, const std::vector<FaceBlock>& faces) {
@@ -444,7 +476,7 @@ double mesh_volume(const Mesh& mesh) {
   double volume = 0.0;
   for (const auto& block : mesh.blocks) {
     detail::dispatch_block(block.type, [&]<int NPE>() {
-      const RuleTable<NPE> rule(block.type, quadrature(block.type));
+      const RuleTable<NPE> rule(block.type, load_quadrature(block.type));  // exact for curved TET10 det J
       double sum = 0.0;
 #pragma omp parallel for reduction(+ : sum) schedule(static)
       for (Index e = 0; e < block.size(); ++e) {

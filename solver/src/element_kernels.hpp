@@ -3,6 +3,7 @@
 // Jacobian, physical shape-function gradients, element stiffness of the
 // isotropic elastic solid. Templated on the node count so the small dense
 // algebra has fixed sizes.
+#include <optional>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -95,6 +96,36 @@ void dispatch_block(ElementType type, F&& f) {
     case ElementType::Hex20: f.template operator()<20>(); break;
   }
 }
+
+// True when every mid-edge node of a quadratic element lies at the midpoint
+// of its edge (to 1e-10 of the element size): such elements have an affine
+// (TET10) or trilinear geometry and their stiffness rule is exact.
+template <int NPE>
+bool straight_sided(ElementType type, const NodeMatrix<NPE>& X) {
+  const int corners = corner_nodes(type);
+  if (corners == NPE) return true;
+  const double size = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+  for (int m = corners; m < NPE; ++m) {
+    const auto ends = edge_corners(type, m);
+    if ((X.row(m) - 0.5 * (X.row(ends[0]) + X.row(ends[1]))).norm() > 1e-10 * size) return false;
+  }
+  return true;
+}
+
+// Stiffness rules of a block: the element's own, and for TET10 the
+// degree-5 rule used on elements with curved edges.
+template <int NPE>
+struct StiffnessRules {
+  RuleTable<NPE> regular;
+  std::optional<RuleTable<NPE>> curved;
+  ElementType type;
+  explicit StiffnessRules(ElementType t) : regular(t, quadrature(t)), type(t) {
+    if (t == ElementType::Tet10) curved.emplace(t, curved_tet_quadrature());
+  }
+  const RuleTable<NPE>& for_element(const NodeMatrix<NPE>& X) const {
+    return curved && !straight_sided<NPE>(type, X) ? *curved : regular;
+  }
+};
 
 // Lame parameters.
 inline void lame(double E, double nu, double& lambda, double& mu) {

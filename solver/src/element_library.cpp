@@ -67,6 +67,28 @@ const std::vector<QuadraturePoint>& quadrature(ElementType type) {
   return tet1;
 }
 
+const std::vector<QuadraturePoint>& curved_tet_quadrature() {
+  // 14 points, degree 5, all weights positive (Walkington / Keast): exact
+  // for the stiffness integrand of a TET10 with curved edges, whose
+  // adj(J)^T dN/dxi terms are cubic.
+  static const std::vector<QuadraturePoint> rule = [] {
+    std::vector<QuadraturePoint> r;
+    const double a = 0.0455037041256496, b = 0.4544962958743504, wab = 0.007091003462846911;
+    const double pairs[6][3] = {{a, a, b}, {a, b, a}, {b, a, a}, {a, b, b}, {b, a, b}, {b, b, a}};
+    for (const auto& p : pairs) r.push_back({Eigen::Vector3d(p[0], p[1], p[2]), wab});
+    for (auto [c, w] : {std::pair{0.0927352503108912, 0.01224884051939366},
+                        std::pair{0.3108859192633006, 0.01878132095300264}}) {
+      const double d = 1.0 - 3.0 * c;
+      r.push_back({Eigen::Vector3d(c, c, c), w});
+      r.push_back({Eigen::Vector3d(d, c, c), w});
+      r.push_back({Eigen::Vector3d(c, d, c), w});
+      r.push_back({Eigen::Vector3d(c, c, d), w});
+    }
+    return r;
+  }();
+  return rule;
+}
+
 const std::vector<QuadraturePoint>& load_quadrature(ElementType type) {
   // Degree 3 on tetrahedra (Keast, with a negative centroid weight): exact for
   // quadratic shape functions times a linear body-force field (rigid-body

@@ -73,4 +73,13 @@ Eigen::VectorXd LinearStaticAnalysis::reactions(const DisplacementField& displac
   return r;
 }
 
+Eigen::VectorXd LinearStaticAnalysis::reactions_at(const DisplacementField& displacement,
+                                                   const Eigen::VectorXd& external_force,
+                                                   const std::vector<Index>& nodes) const {
+  Eigen::VectorXd r = internal_forces_at(model_.mesh, model_.material, displacement, nodes);
+  for (size_t k = 0; k < nodes.size(); ++k)
+    r.segment<3>(3 * Index(k)) -= external_force.segment<3>(3 * nodes[k]);
+  return r;
+}
+
 }  // namespace kinetofem::fem

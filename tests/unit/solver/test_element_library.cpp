@@ -96,6 +96,26 @@ TEST(Quadrature, IntegratesReferenceVolumeAndPolynomials) {
   EXPECT_NEAR(cubic, 1.0 / 360.0, 1e-15);
 }
 
+TEST(Quadrature, CurvedTetRuleIsExactToDegreeFive) {
+  // Reference: int_T xi^a eta^b zeta^c = a! b! c! / (a + b + c + 3)! on the unit tetrahedron.
+  auto factorial = [](int n) { double f = 1; for (int k = 2; k <= n; ++k) f *= k; return f; };
+  double weights = 0;
+  for (const auto& qp : curved_tet_quadrature()) {
+    EXPECT_GT(qp.weight, 0.0);
+    weights += qp.weight;
+  }
+  EXPECT_NEAR(weights, 1.0 / 6.0, 1e-15);
+  for (int a = 0; a <= 5; ++a)
+    for (int b = 0; a + b <= 5; ++b)
+      for (int c = 0; a + b + c <= 5; ++c) {
+        double sum = 0;
+        for (const auto& qp : curved_tet_quadrature())
+          sum += qp.weight * std::pow(qp.xi[0], a) * std::pow(qp.xi[1], b) * std::pow(qp.xi[2], c);
+        const double exact = factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + 3);
+        EXPECT_NEAR(sum, exact, 1e-14) << a << b << c;
+      }
+}
+
 TEST(ElementFaces, NormalsPointOutOfTheReferenceElement) {
   for (ElementType type : kAllTypes) {
     const Eigen::MatrixXd X = reference_nodes(type);

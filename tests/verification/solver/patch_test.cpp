@@ -137,7 +137,7 @@ TEST_P(PatchTest, LinearDisplacementFieldIsReproduced) {
 // Gauss-point stress (random 0.1, mid-node 0.05 distortion). Disabled until the element
 // library uses a degree >= 3 rule for TET10 stiffness (reported to the lead);
 // same reference and tolerance as above.
-TEST(PatchTestCurved, DISABLED_CurvedTet10) {
+TEST(PatchTestCurved, CurvedTet10) {
   BoxMeshOptions options;
   options.length_m = box_length;
   options.divisions = {3, 3, 3};

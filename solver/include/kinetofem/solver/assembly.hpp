@@ -42,6 +42,12 @@ Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMateri
 Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& material,
                                 const DisplacementField& displacement);
 
+// K u restricted to the given nodes (3 per node, in their order), from the
+// elements touching them only.
+Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& material,
+                                   const DisplacementField& displacement,
+                                   const std::vector<Index>& nodes);
+
 // Volume of the mesh (m^3), by the elements' Gauss rules.
 double mesh_volume(const Mesh& mesh);
 

@@ -39,6 +39,11 @@ Eigen::MatrixXd reference_nodes(ElementType type);
 // element's stiffness rule.
 const std::vector<QuadraturePoint>& load_quadrature(ElementType type);
 
+// Degree-5, 14-point positive rule on the tetrahedron: the stiffness rule of
+// TET10 elements with curved edges (the 4-point rule is exact only for
+// straight-sided ones and fails the patch test on curved ones).
+const std::vector<QuadraturePoint>& curved_tet_quadrature();
+
 // The two corner nodes of a mid-edge node (TET10: 4..9, HEX20: 8..19).
 std::array<int, 2> edge_corners(ElementType type, int mid_node);
 

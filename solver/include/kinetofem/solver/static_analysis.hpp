@@ -31,6 +31,13 @@ class LinearStaticAnalysis {
   Eigen::VectorXd reactions(const DisplacementField& displacement,
                             const Eigen::VectorXd& external_force) const;
 
+  // The same, only at the given nodes (3 per node, in their order): cheap
+  // when few nodes are asked for (only the elements touching them are
+  // visited), e.g. the six reactions of a 3-2-1 support.
+  Eigen::VectorXd reactions_at(const DisplacementField& displacement,
+                               const Eigen::VectorXd& external_force,
+                               const std::vector<Index>& nodes) const;
+
   const DofMap& dofs() const { return dofs_; }
   const CholmodStatistics& solver_statistics() const { return solver_.statistics(); }
   const StaticTimings& timings() const { return timings_; }
