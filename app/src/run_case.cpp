@@ -1,36 +1,44 @@
-#include <fstream>
-#include <sstream>
-
-#include <toml++/toml.h>
-
-#include "kinetofem/app/case_file.hpp"
+#include "kinetofem/app/case_types.hpp"
 #include "kinetofem/app/fe_static_job.hpp"
-#include "kinetofem/app/jobs.hpp"
+#include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::app {
 
-namespace {
-
-// The case's [case] type, read before the case is checked against the
-// schema of that type. Syntax errors are reported by CaseFile::load.
-std::string case_type(const std::filesystem::path& path) {
-  const CaseFile any = CaseFile::load(path, {{.path = "case.type", .type = KeySpec::Type::String,
-                                              .required = true}}, /*allow_unknown=*/true);
-  return any.text_value("case.type");
+const std::vector<CaseType>& case_types() {
+  static const std::vector<CaseType> types = {
+      {"fe_static", "one linear-elastic part under static loads", &fe_static_schema,
+       [](const CaseFile& c, const RunOptions& o) { run_fe_static(c, o); return 0; }},
+      {"manipulator",
+       "lever-chain or lever manipulator: motion, loads on every link, stress over the motion",
+       &manipulator_schema,
+       [](const CaseFile& c, const RunOptions& o) { run_manipulator(c, o); return 0; }},
+  };
+  return types;
 }
 
-}  // namespace
+const CaseType& case_type_named(const std::string& name, const std::string& context) {
+  std::string known;
+  for (const auto& type : case_types()) {
+    if (type.name == name) return type;
+    known += (known.empty() ? "\"" : ", \"") + type.name + "\"";
+  }
+  fail("{}case.type = \"{}\" is not a known case type (known: {})", context, name, known);
+}
+
+std::string case_template(const std::string& type) {
+  const CaseType& t = case_type_named(type, "");
+  return schema_template(t.schema(), "kinetofem case template: " + t.name + " — " + t.summary);
+}
 
 int run_case(const RunOptions& options) {
-  const std::string type = case_type(options.case_path);
-  if (type == "fe_static") {
-    const CaseFile c = CaseFile::load(options.case_path, fe_static_schema());
-    run_fe_static(c, options);
-    return 0;
-  }
-  fail("{}: case.type = \"{}\" is not a known case type (known: \"fe_static\")",
-       options.case_path.string(), type);
+  // Read case.type first, then check the whole file against that type's schema.
+  const CaseFile any = CaseFile::load(
+      options.case_path, {{.path = "case.type", .type = KeySpec::Type::String, .required = true}},
+      /*allow_unknown=*/true);
+  const CaseType& type = case_type_named(any.text_value("case.type"), options.case_path.string() + ": ");
+  const CaseFile c = CaseFile::load(options.case_path, type.schema());
+  return type.run(c, options);
 }
 
 }  // namespace kinetofem::app

@@ -56,7 +56,8 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
       clock.restart();
       const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
       const Eigen::VectorXd magnitude = fem::displacement_magnitude(u);
-      for (fem::Index i = 0; i < nodes; ++i) {
+      const bool in_envelope = options.envelope_steps == 0 || step < options.envelope_steps;
+      for (fem::Index i = 0; in_envelope && i < nodes; ++i) {
         if (stress.von_mises_pa[i] > env.max_von_mises_pa[i]) {
           env.max_von_mises_pa[i] = stress.von_mises_pa[i];
           env.max_von_mises_step[i] = int(step);

@@ -25,6 +25,10 @@ namespace kinetofem::loads {
 struct LinkStressOptions {
   int block_size = 32;  // right-hand sides per block solve
   double reaction_tolerance = 1e-6;
+  // Only the first `envelope_steps` frames enter the envelope (the rest, e.g.
+  // a static pose study solved in the same block, go to the callback only);
+  // 0 = all frames.
+  std::size_t envelope_steps = 0;
   fem::CholmodOptions solver;
 };
 

@@ -1,0 +1,24 @@
+#pragma once
+// The registry of case types: each type's name, schema and job. `case.type`
+// in a case file selects one.
+#include <string>
+#include <vector>
+
+#include "kinetofem/app/case_file.hpp"
+#include "kinetofem/app/jobs.hpp"
+
+namespace kinetofem::app {
+
+struct CaseType {
+  std::string name;
+  std::string summary;
+  const std::vector<KeySpec>& (*schema)();
+  int (*run)(const CaseFile&, const RunOptions&);
+};
+
+const std::vector<CaseType>& case_types();
+const CaseType& case_type_named(const std::string& name, const std::string& context);
+// A commented TOML template of a case type (kinetofem case --template TYPE).
+std::string case_template(const std::string& type);
+
+}  // namespace kinetofem::app

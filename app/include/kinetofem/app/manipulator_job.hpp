@@ -1,0 +1,39 @@
+#pragma once
+// The "manipulator" case type: the whole chain for the lever-chain (SPEC §1)
+// or lever (SPEC §2) manipulator — link meshes, multibody model with the
+// meshes' mass properties, motion of lever 1 integrated with SUNDIALS IDAS,
+// kinetostatic loads on every link at every output time, one factorization
+// per link and block solves over the motion, stress envelope, a static pose
+// study (gravity and payload), the comparison with the published values of
+// SPEC §3, and one HDF5 + XDMF results file.
+#include <string>
+#include <vector>
+
+#include "kinetofem/app/case_file.hpp"
+#include "kinetofem/app/jobs.hpp"
+
+namespace kinetofem::app {
+
+const std::vector<KeySpec>& manipulator_schema();
+
+struct LinkSummary {
+  std::string link;
+  long nodes = 0, dofs = 0;
+  double peak_von_mises_pa = 0, peak_von_mises_time_s = 0;
+  double peak_displacement_m = 0, peak_displacement_time_s = 0;
+  double static_von_mises_pa = 0, static_displacement_m = 0;
+  double factorize_seconds = 0, solve_seconds = 0;
+};
+
+struct ManipulatorSummary {
+  std::string mechanism;  // "lever_chain" or "lever"
+  std::vector<LinkSummary> links;
+  double max_von_mises_pa = 0, max_displacement_m = 0;              // over links and motion
+  double static_max_von_mises_pa = 0, static_max_displacement_m = 0;  // static pose study
+  double max_drive_torque_nm = 0, min_chain_tension_n = 0, max_chain_tension_n = 0;
+  std::filesystem::path results_file;
+};
+
+ManipulatorSummary run_manipulator(const CaseFile& case_file, const RunOptions& options);
+
+}  // namespace kinetofem::app
