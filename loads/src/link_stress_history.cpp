@@ -55,7 +55,10 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
              loads.body(), frames[step].t, relative);
       clock.restart();
       const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
-      const Eigen::VectorXd magnitude = fem::displacement_magnitude(u);
+      // Deformation measure: the elastic displacement without the rigid-body
+      // part the 3-2-1 support's arbitrary nodes put into it.
+      const Eigen::VectorXd magnitude =
+          fem::displacement_magnitude(fem::remove_rigid_body_motion(model.mesh, u));
       const bool in_envelope = options.envelope_steps == 0 || step < options.envelope_steps;
       for (fem::Index i = 0; in_envelope && i < nodes; ++i) {
         if (stress.von_mises_pa[i] > env.max_von_mises_pa[i]) {

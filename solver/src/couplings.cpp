@@ -219,6 +219,30 @@ MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& materi
   return out;
 }
 
+Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> remove_rigid_body_motion(
+    const Mesh& mesh, const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& u) {
+  // Minimise sum |u_i - t - theta x r_i|^2 with r_i = x_i - centroid: the
+  // normal equations decouple into t = mean(u) and J theta = sum r_i x u_i,
+  // J = sum (|r_i|^2 I - r_i r_i^T).
+  const Index n = mesh.node_count();
+  const Eigen::Vector3d centroid = mesh.nodes.colwise().mean().transpose();
+  const Eigen::Vector3d t = u.colwise().mean().transpose();
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = mesh.nodes.row(i).transpose() - centroid;
+    J += r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
+    b += r.cross(u.row(i).transpose());
+  }
+  const Eigen::Vector3d theta = J.ldlt().solve(b);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> out(n, 3);
+  for (Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = mesh.nodes.row(i).transpose() - centroid;
+    out.row(i) = (u.row(i).transpose() - t - theta.cross(r)).transpose();
+  }
+  return out;
+}
+
 void resultant(const Mesh& mesh, const Eigen::VectorXd& forces, const Eigen::Vector3d& point,
                Eigen::Vector3d& force_n, Eigen::Vector3d& moment_nm) {
   force_n.setZero();

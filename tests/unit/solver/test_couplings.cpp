@@ -107,6 +107,22 @@ TEST(MassProperties, MatchTheRigidBodyLoadsAndEuler) {
   EXPECT_NEAR(M.z(), -mp.inertia_about_com_kgm2(2, 2) * 7.0, 1e-9 * std::abs(M.z()));
 }
 
+TEST(RemoveRigidBodyMotion, LeavesNothingOfARigidMotionAndKeepsAStretch) {
+  const Mesh& mesh = link_mesh();
+  DisplacementField u(mesh.node_count(), 3), stretch(mesh.node_count(), 3);
+  const Eigen::Vector3d t(1e-4, -2e-4, 3e-5), theta(1e-4, 2e-4, -3e-4);
+  for (Index i = 0; i < mesh.node_count(); ++i) {
+    const Eigen::Vector3d x = mesh.nodes.row(i).transpose();
+    u.row(i) = (t + theta.cross(x)).transpose();
+    stretch.row(i) << 1e-3 * (x.x() - 0.12), 0, 0;  // symmetric about the centroid: no rigid part
+  }
+  // A small rigid motion is linear in x: it is removed exactly (round-off).
+  EXPECT_LT(remove_rigid_body_motion(mesh, u).cwiseAbs().maxCoeff(), 1e-15);
+  const DisplacementField kept = remove_rigid_body_motion(mesh, u + stretch);
+  EXPECT_LT((kept - remove_rigid_body_motion(mesh, stretch)).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_GT(kept.col(0).cwiseAbs().maxCoeff(), 1e-4);
+}
+
 TEST(ThreeTwoOneSupport, FreeLinkUnderSelfEquilibratedLoadsHasZeroReactions) {
   const Mesh& mesh = link_mesh();
   FeModel model;

@@ -6,8 +6,11 @@
 // all output times are solved as blocks of right-hand sides. Each step's
 // displacement (elastic, body frame, m) and nodal stresses (Pa) are handed to
 // a callback (to stream them to the results file) and folded into the
-// envelope: per node the maximum von Mises stress and displacement magnitude
-// over the motion and the step where each occurs.
+// envelope: per node the maximum von Mises stress and deformation magnitude
+// over the motion and the step where each occurs. The deformation is the
+// elastic displacement minus its best-fitting rigid-body motion
+// (fem::remove_rigid_body_motion), so it does not depend on which nodes the
+// 3-2-1 support holds.
 //
 // The support's six reactions are computed at every step from K u - f and
 // must vanish (the loads are self-equilibrated): above `reaction_tolerance`

@@ -108,6 +108,13 @@ struct MassProperties {
 };
 MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& material);
 
+// The displacement field minus its best-fitting (least-squares, all nodes
+// weighted equally) small rigid-body motion t + theta x x: the deformation
+// of a free body, independent of which nodes hold it (e.g. the 3-2-1
+// support). Returns N x 3, m.
+Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> remove_rigid_body_motion(
+    const Mesh& mesh, const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& displacement);
+
 // Resultant force and moment (about `point`) of a nodal force vector (3 N).
 void resultant(const Mesh& mesh, const Eigen::VectorXd& forces, const Eigen::Vector3d& point,
                Eigen::Vector3d& force_n, Eigen::Vector3d& moment_nm);

@@ -1,0 +1,58 @@
+#pragma once
+// Kinematic analysis of a MultibodySystem: assembly, velocities,
+// accelerations with multipliers, singular-position detection, and the
+// prescribed-motion (kinetostatic) run of a fully driven mechanism.
+//
+// Assembly: Newton iterations q <- q - Phi_q^+ Phi(q, t) (minimum-norm step,
+// complete orthogonal decomposition, so under-determined systems move as little
+// as possible from the guess) until max|Phi| (angles times the characteristic
+// length) < tolerance * L. Failure throws "cannot be assembled at t = ...,
+// residual ...".
+// Velocities: q' = g - Phi_q^T (Phi_q Phi_q^T)^-1 (Phi_q g - nu), the
+// constrained velocity closest to the guess g.
+// Accelerations: the index-1 system of results.hpp.
+// Singular position: the smallest singular value of Phi_q relative to the
+// largest below the tolerance (rank loss: a dead centre, a limit of assembly).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/mechanisms/multibody/system.hpp"
+
+namespace kinetofem::mech {
+
+struct KinematicOptions {
+  double tolerance = 1e-13;          // relative to the characteristic length
+  int max_iterations = 50;
+  double singular_tolerance = 1e-6;  // on sigma_min / sigma_max of Phi_q
+  bool slack_is_error = true;
+};
+
+Eigen::VectorXd assemble(const MultibodySystem& system, Eigen::VectorXd q_guess, double t,
+                         const KinematicOptions& options = {});
+Eigen::VectorXd solve_velocities(const MultibodySystem& system, const Eigen::VectorXd& q, double t,
+                                 const Eigen::VectorXd& qd_guess);
+
+struct Accelerations {
+  Eigen::VectorXd q_ddot, lambda;
+};
+Accelerations solve_accelerations(const MultibodySystem& system, const Eigen::VectorXd& q,
+                                  const Eigen::VectorXd& qd, double t);
+
+// sigma_max / sigma_min of Phi_q (infinity when rank-deficient).
+double jacobian_condition(const MultibodySystem& system, const Eigen::VectorXd& q, double t);
+// Throws "singular position at t = ...: ..." naming the time, the condition and the body poses.
+void check_regular(const MultibodySystem& system, const Eigen::VectorXd& q, double t, double singular_tolerance);
+
+// Number of degrees of freedom at q: n - rank(Phi_q).
+int degrees_of_freedom(const MultibodySystem& system, const Eigen::VectorXd& q, double t);
+
+// Kinematically determined run (DoF 0): at each time assemble (warm start),
+// solve velocities and accelerations, and the multipliers (drive efforts,
+// reactions) by kinetostatics. Drive work is integrated with the trapezoidal rule
+// over the output times (a coarse check, not used for verification).
+Results run_kinematics(const MultibodySystem& system, const std::vector<double>& times,
+                       const KinematicOptions& options = {});
+
+}  // namespace kinetofem::mech
