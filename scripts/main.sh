@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-./build/app/kinetofem run cases/lever_static/case.toml "$@"
+./build/app/kinetofem run cases/lever_chain_manipulator/case.toml "$@"
