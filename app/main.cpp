@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   context.command_line = kinetofem::post::command_line_of(argc, argv);
   kinetofem::app::add_run_command(app, context);
   kinetofem::app::add_case_command(app, context);
+  kinetofem::app::add_post_command(app, context);
+  kinetofem::app::add_batch_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

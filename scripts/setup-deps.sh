@@ -13,6 +13,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev
   libgmsh-dev gmsh
   libtomlplusplus-dev libcli11-dev libfmt-dev
+  libopenmpi-dev openmpi-bin
+  libcairo2-dev
 )
 
 missing=()

@@ -19,6 +19,7 @@ std::string type_name(KeySpec::Type type) {
     case KeySpec::Type::Vector3: return "an array of 3 numbers";
     case KeySpec::Type::StringList: return "an array of strings";
     case KeySpec::Type::TableArray: return "an array of tables ([[...]])";
+    case KeySpec::Type::Array: return "an array";
   }
   return "?";
 }
@@ -41,10 +42,57 @@ std::string range_text(const KeySpec& s) {
   return lo + (lo.empty() || hi.empty() ? "" : " and ") + hi;
 }
 
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+// One segment of an override's key: "support[1]" -> {"support", 1}.
+struct KeySegment {
+  std::string name;
+  std::optional<std::size_t> index;
+};
+
+}  // namespace
+
+std::pair<std::string, std::string> split_override(const std::string& text) {
+  const auto eq = text.find('=');
+  const std::string key = eq == std::string::npos ? "" : trim(text.substr(0, eq));
+  if (key.empty())
+    fail("--set {}: expected KEY=VALUE (e.g. --set mesh.element_size_mm=20)", text);
+  return {key, trim(text.substr(eq + 1))};
+}
+
+namespace {
+
+std::vector<KeySegment> key_segments(const std::string& key, const std::string& shown) {
+  std::vector<KeySegment> out;
+  std::stringstream in(key);
+  for (std::string part; std::getline(in, part, '.');) {
+    KeySegment segment;
+    const auto open = part.find('[');
+    segment.name = part.substr(0, open);
+    if (open != std::string::npos) {
+      const auto close = part.find(']', open);
+      const std::string digits = close == std::string::npos ? "" : part.substr(open + 1, close - open - 1);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+          close + 1 != part.size())
+        fail("{}: key '{}': an element of an array of tables is written name[INDEX] (e.g. force[0].total_n)",
+             shown, key);
+      segment.index = std::stoul(digits);
+    }
+    if (segment.name.empty()) fail("{}: key '{}' has an empty part", shown, key);
+    out.push_back(segment);
+  }
+  if (out.empty()) fail("{}: empty key", shown);
+  return out;
+}
+
 }  // namespace
 
 CaseFile CaseFile::load(const std::filesystem::path& path, std::vector<KeySpec> schema,
-                        bool allow_unknown) {
+                        bool allow_unknown, const std::vector<std::string>& overrides) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail("{}: case file does not exist", path.string());
   if (std::filesystem::is_directory(path, ec))
@@ -53,11 +101,12 @@ CaseFile CaseFile::load(const std::filesystem::path& path, std::vector<KeySpec> 
   if (!in) fail("{}: cannot open case file", path.string());
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse(buffer.str(), path, std::move(schema), allow_unknown);
+  return parse(buffer.str(), path, std::move(schema), allow_unknown, overrides);
 }
 
 CaseFile CaseFile::parse(const std::string& text, const std::filesystem::path& path,
-                         std::vector<KeySpec> schema, bool allow_unknown) {
+                         std::vector<KeySpec> schema, bool allow_unknown,
+                         const std::vector<std::string>& overrides) {
   CaseFile c;
   c.allow_unknown_ = allow_unknown;
   c.path_ = path;
@@ -71,6 +120,7 @@ CaseFile CaseFile::parse(const std::string& text, const std::filesystem::path& p
          std::string(e.description()));
   }
   c.check_table(c.root_, "");
+  for (const auto& o : overrides) c.apply_override(o);
   for (const auto& s : c.schema_)
     if (s.required && s.path.find("[]") == std::string::npos && !c.find(s.path, 0))
       fail("{}: required key '{}' is missing ({})", path.string(), s.path, s.doc);
@@ -96,7 +146,8 @@ void CaseFile::check_table(const toml::table& table, const std::string& prefix) 
       continue;
     }
     if (found) {
-      check_value(*found, node, path);
+      check_value(*found, node,
+                  fmt::format("{}:{}: key '{}'", path_.string(), node.source().begin.line, path));
       continue;
     }
     if (is_parent && node.is_table()) {
@@ -117,9 +168,78 @@ void CaseFile::check_table(const toml::table& table, const std::string& prefix) 
   }
 }
 
-void CaseFile::check_value(const KeySpec& s, const toml::node& node, const std::string& shown) const {
-  const auto line = node.source().begin.line;
-  const std::string at = fmt::format("{}:{}: key '{}'", path_.string(), line, shown);
+void CaseFile::apply_override(const std::string& text) {
+  const std::string shown = "--set " + text;
+  const auto [key, value] = split_override(text);
+  const std::vector<KeySegment> segments = key_segments(key, shown);
+  std::string schema_path;
+  for (const auto& segment : segments)
+    schema_path += (schema_path.empty() ? "" : ".") + segment.name + (segment.index ? "[]" : "");
+
+  // The value as TOML; a bare word that is not TOML (--set mesh.family=hex) is a string.
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + value, std::string("--set"));
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{};
+  }
+  if (parsed.size() != 1 || !parsed.contains("value")) {
+    if (value.find_first_of("[]{}\"'=\n") != std::string::npos)
+      fail("{}: the value '{}' is not a TOML value (number, \"string\", [array], true/false)", shown,
+           value);
+    parsed = toml::table{{"value", value}};
+  }
+  toml::node& new_value = *parsed.get("value");
+
+  const KeySpec* found = nullptr;
+  for (const auto& s : schema_)
+    if (s.path == schema_path) found = &s;
+  if (!found && !allow_unknown_) {
+    // The keys of the same table if it exists, else every key.
+    const std::string table = schema_path.substr(0, schema_path.rfind('.') + 1);
+    std::string allowed, all;
+    for (const auto& s : schema_) {
+      if (s.type == KeySpec::Type::TableArray) continue;
+      all += (all.empty() ? "" : ", ") + s.path;
+      if (!table.empty() && s.path.rfind(table, 0) == 0) allowed += (allowed.empty() ? "" : ", ") + s.path;
+    }
+    fail("{}: unknown key '{}' (allowed: {})", shown, key, allowed.empty() ? all : allowed);
+  }
+  if (found && found->type == KeySpec::Type::TableArray)
+    fail("{}: key '{}' is an array of tables: set one of its keys, e.g. {}[0].KEY", shown, key, key);
+  if (found) check_value(*found, new_value, fmt::format("{}: key '{}'", shown, key));
+
+  // Walk down to the parent table, creating tables that the file lacks.
+  toml::table* table = &root_;
+  for (std::size_t k = 0; k + 1 < segments.size(); ++k) {
+    const KeySegment& segment = segments[k];
+    toml::node* child = table->get(segment.name);
+    if (segment.index) {
+      auto* array = child ? child->as_array() : nullptr;
+      const std::size_t size = array ? array->size() : 0;
+      if (*segment.index >= size)
+        fail("{}: key '{}': the case has {} [[{}]] element(s) (indices 0..{}); an override cannot add one",
+             shown, key, size, segment.name, size == 0 ? std::string("none") : std::to_string(size - 1));
+      table = (*array)[*segment.index].as_table();
+      if (!table) fail("{}: key '{}': element {} of '{}' is not a table", shown, key, *segment.index, segment.name);
+      continue;
+    }
+    if (!child) child = table->insert(segment.name, toml::table{}).first->second.as_table();
+    if (!child->is_table())
+      fail("{}: key '{}': '{}' is a value in the case file, not a table", shown, key, segment.name);
+    table = child->as_table();
+  }
+  if (segments.back().index)
+    fail("{}: key '{}': an index belongs to an array of tables, not to the last part of a key", shown, key);
+  const toml::node* old = table->get(segments.back().name);
+  if (old && old->is_table())
+    fail("{}: key '{}' is a table in the case file: set one of its keys", shown, key);
+  table->insert_or_assign(segments.back().name, std::move(new_value));
+  override_texts_.push_back(text);
+  override_keys_.push_back(key);
+}
+
+void CaseFile::check_value(const KeySpec& s, const toml::node& node, const std::string& at) const {
   auto check_number = [&](double v) {
     if (!std::isfinite(v)) fail("{} = {} is not a finite number", at, v);
     const bool low = s.min_exclusive ? !(v > s.min) : !(v >= s.min);
@@ -172,6 +292,9 @@ void CaseFile::check_value(const KeySpec& s, const toml::node& node, const std::
       return;
     }
     case KeySpec::Type::TableArray: return;
+    case KeySpec::Type::Array:
+      if (!node.is_array()) fail("{} must be {}", at, type_name(s.type));
+      return;
   }
 }
 
@@ -199,6 +322,9 @@ std::string CaseFile::where(const std::string& path, std::size_t element) const 
   std::string shown = path;
   const auto bracket = shown.find("[]");
   if (bracket != std::string::npos) shown.replace(bracket, 2, fmt::format("[{}]", element));
+  for (std::size_t k = override_keys_.size(); k-- > 0;)
+    if (override_keys_[k] == shown)
+      return fmt::format("{}: key '{}' (--set {})", path_.string(), shown, override_texts_[k]);
   if (!node) return fmt::format("{}: key '{}'", path_.string(), shown);
   return fmt::format("{}:{}: key '{}'", path_.string(), node->source().begin.line, shown);
 }

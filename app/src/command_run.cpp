@@ -14,6 +14,9 @@ void add_run_command(CLI::App& app, CommandContext& context) {
   run->add_option("-o,--output-dir", options->output_dir, "Directory for results")
       ->capture_default_str();
   run->add_flag("-q,--quiet", options->quiet, "Print only errors and the summary");
+  run->add_option("--set", options->overrides,
+                  "Override a case key: KEY=VALUE, the value in TOML (20, \"hex\", [0, 1, 0]); repeatable")
+      ->allow_extra_args(false);
   run->callback([options, &context] {
     options->command_line = context.command_line;
     context.exit_code = run_case(*options);

@@ -75,6 +75,12 @@ const std::vector<KeySpec>& fe_static_schema() {
        .doc = "fill-reducing ordering of the Cholesky factorization"},
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
        .doc = "memory allowed for the factor; 0 = 80 % of physical memory"},
+      {.path = "sweep.parameters", .type = Type::StringList,
+       .doc = "kinetofem batch: keys to sweep, e.g. [\"payload.casting_mass_kg\"] (kinetofem run ignores [sweep])"},
+      {.path = "sweep.values", .type = Type::Array,
+       .doc = "kinetofem batch: the values of each swept key, e.g. [[5, 10, 15]] ([] where linspace gives them)"},
+      {.path = "sweep.linspace", .type = Type::Array,
+       .doc = "kinetofem batch: [start, stop, count] of each swept key, e.g. [[5.0, 40.0, 20]] ([] where values gives them)"},
   };
   return schema;
 }
@@ -263,6 +269,12 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
   require(summary.reaction_balance < 1e-6,
           "equilibrium check failed: support reactions balance the loads only to {:.2e}",
           summary.reaction_balance);
+  // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml.
+  write_run_summary(options.output_dir,
+                    {.name = name, .type = "fe_static", .results_file = summary.results_file,
+                     .wall_time_s = total.seconds(), .max_von_mises_pa = summary.max_von_mises_pa,
+                     .max_displacement_m = summary.max_displacement_m,
+                     .extra = {{"dofs", double(summary.dof_count)}, {"reaction_balance", summary.reaction_balance}}});
   return summary;
 }
 

@@ -84,6 +84,12 @@ const std::vector<KeySpec>& manipulator_schema() {
        .doc = "lever angle of the static pose from the design position"},
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0, .doc = "memory allowed for a factor; 0 = 80 % of physical memory"},
       {.path = "solver.block_size", .type = Type::Integer, .default_number = 32, .min = 1, .max = 100000, .doc = "right-hand sides per block solve"},
+      {.path = "sweep.parameters", .type = Type::StringList,
+       .doc = "kinetofem batch: keys to sweep, e.g. [\"payload.casting_mass_kg\"] (kinetofem run ignores [sweep])"},
+      {.path = "sweep.values", .type = Type::Array,
+       .doc = "kinetofem batch: the values of each swept key, e.g. [[5, 10, 15]] ([] where linspace gives them)"},
+      {.path = "sweep.linspace", .type = Type::Array,
+       .doc = "kinetofem batch: [start, stop, count] of each swept key, e.g. [[5.0, 40.0, 20]] ([] where values gives them)"},
   };
   return schema;
 }
@@ -195,6 +201,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   add_link("arm", meshes::mesh_arm(arm_dims, mesh_options));
   if (!chain) add_link("rocker", meshes::mesh_lever(rocker_dims, mesh_options));
   log.info("  meshing: {:.2f} s", clock.seconds());
+  const double meshing_seconds = clock.seconds();
 
   // ---- multibody model with the meshes' mass properties ------------------
   auto inertia_of = [&](const Link& link) {
@@ -223,7 +230,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   } catch (const Error& e) {
     fail("{}: the motion cannot be run: {}", c.path().string(), e.what());
   }
-  log.info("  dynamics: {:.3f} s", clock.seconds());
+  const double dynamics_seconds = clock.seconds();
+  log.info("  dynamics: {:.3f} s", dynamics_seconds);
   log.info("{}", motion.format_checks());
 
   // Static pose study: gravity and payload, at rest, at the chosen pose.
@@ -260,6 +268,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
 
   ManipulatorSummary summary;
   summary.mechanism = chain ? "lever_chain" : "lever";
+  summary.meshing_seconds = meshing_seconds;
+  summary.dynamics_seconds = dynamics_seconds;
   summary.results_file = options.output_dir / (name + ".h5");
   post::Provenance provenance;
   provenance.case_path = c.path().string();
@@ -308,6 +318,13 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     ls.peak_displacement_time_s = motion.frames[size_t(env.peak_displacement_step)].t;
     ls.factorize_seconds = env.solver.factorize_seconds;
     ls.solve_seconds = env.solve_seconds;
+    ls.assembly_seconds = env.assembly_seconds;
+    ls.recovery_seconds = env.recovery_seconds;
+    ls.analyze_seconds = env.solver.analyze_seconds;
+    ls.factor_nonzeros = env.solver.factor_nonzeros;
+    ls.factor_bytes = env.solver.factor_bytes;
+    ls.factorization_flops = env.solver.factorization_flops;
+    ls.right_hand_sides = long(frames.size());
     const auto at = link.model.mesh.nodes.row(env.peak_von_mises_node) / kMm;
     log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
              "loads in equilibrium to {:.1e}, support reactions {:.1e}",
@@ -380,6 +397,15 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
               "    deformation in its own body frame (rigid-body motion removed), not the assembly's total deformation.\n"
               "  results: %s (+ .xdmf)\n  wall time: %.2f s\n",
               summary.results_file.string().c_str(), total.seconds());
+  // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml.
+  write_run_summary(options.output_dir,
+                    {.name = name, .type = "manipulator", .results_file = summary.results_file,
+                     .wall_time_s = total.seconds(), .max_von_mises_pa = summary.max_von_mises_pa,
+                     .max_displacement_m = summary.max_displacement_m,
+                     .extra = {{"static_max_von_mises_mpa", summary.static_max_von_mises_pa / kMpa},
+                               {"static_max_displacement_mm", summary.static_max_displacement_m / kMm},
+                               {"max_drive_torque_nm", summary.max_drive_torque_nm}}});
+  summary.total_seconds = total.seconds();
   return summary;
 }
 

@@ -1,12 +1,14 @@
 #include "kinetofem/meshes/msh_io.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 
 #include <gmsh.h>
 
 #include "gmsh_model.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/solver/assembly.hpp"
 
 namespace kinetofem::meshes {
 
@@ -42,15 +44,57 @@ void check_msh_file(const std::filesystem::path& file) {
           file.string());
 }
 
+// Gmsh 4.8 crashes (a null dereference in GModel::setPhysicalName, found by
+// fuzz/fuzz_read_msh) on a $PhysicalNames entry whose dimension is not 0..3,
+// so check that section, which comes first after $MeshFormat and is text
+// even in binary files, before Gmsh reads the file.
+void check_physical_names(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  auto next = [&] {
+    const bool ok = bool(std::getline(in, line));
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return ok;
+  };
+  while (next() && line != "$EndMeshFormat") {
+  }
+  if (!next() || line != "$PhysicalNames") return;
+  long count = -1;
+  require(next() && std::sscanf(line.c_str(), "%ld", &count) == 1 && count >= 0,
+          "{}: $PhysicalNames: expected the number of names, got '{}'", file.string(), line);
+  for (long k = 0; k < count; ++k) {
+    int dim = -1, tag = 0, consumed = 0;
+    require(next() && std::sscanf(line.c_str(), "%d %d %n", &dim, &tag, &consumed) == 2,
+            "{}: $PhysicalNames: entry {} of {} is not 'dimension tag \"name\"': '{}'",
+            file.string(), k + 1, count, line);
+    require(dim >= 0 && dim <= 3, "{}: $PhysicalNames: physical group '{}' has dimension {} (must be 0 to 3)",
+            file.string(), line, dim);
+    require(tag > 0, "{}: $PhysicalNames: physical group '{}' has tag {} (must be positive)", file.string(),
+            line, tag);
+  }
+  require(next() && line == "$EndPhysicalNames",
+          "{}: $PhysicalNames: {} names announced, then '{}' instead of $EndPhysicalNames", file.string(),
+          count, line);
+}
+
 }  // namespace
 
 fem::Mesh read_msh(const std::filesystem::path& file) {
   check_msh_file(file);
+  check_physical_names(file);
   const std::string context = file.string();
   GmshSession session;
   session.call(context, "gmsh::open", [&] { gmsh::open(context); });
   auto mesh = detail::mesh_from_model(session, context);
-  mesh.validate();
+  // A hand-made or exported file may hold non-finite coordinates or inverted
+  // elements: reject them here, naming the file, rather than later in the
+  // analysis where the message could not say where the mesh came from.
+  try {
+    mesh.validate();
+    fem::check_element_jacobians(mesh);
+  } catch (const Error& e) {
+    fail("{}: {}", context, e.what());
+  }
   return mesh;
 }
 

@@ -134,9 +134,9 @@ void CholmodSolver::analyze(const SymmetricUpperMatrix& matrix) {
   const double limit =
       options_.max_factor_bytes > 0 ? options_.max_factor_bytes : 0.8 * physical_memory_bytes();
   if (stats_.factor_bytes > limit)
-    fail("the Cholesky factor of this {}-equation system needs {:.1f} GB (symbolic analysis, "
-         "{} ordering), more than the {:.1f} GB allowed: coarsen the mesh or use the iterative "
-         "solver",
+    // {:.3g}: a small limit (0.001 GB) must not print as "0.0 GB".
+    fail("the Cholesky factor of this {}-equation system needs {:.3g} GB (symbolic analysis, "
+         "{} ordering), more than the {:.3g} GB allowed: coarsen the mesh or raise the limit",
          stats_.equations, stats_.factor_bytes * 1e-9, stats_.ordering, limit * 1e-9);
   if (log_)
     log_->info("  CHOLMOD analyze: {} equations, nnz(K) {} (upper), nnz(L) {:.4g}, {:.4g} flops, "

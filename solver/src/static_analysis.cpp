@@ -30,9 +30,22 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
     Index dof = -1;
     for (Index d = 0; d < dofs_.dof_count(); ++d)
       if (dofs_.equation(d) == error.equation()) dof = d;
-    fail("stiffness matrix is not positive definite at node {} direction {} (equation {}): the "
-         "model has a rigid-body mode left unsupported or an element without stiffness",
-         dof / 3, "xyz"[dof % 3], error.equation());
+    // The commonest cause, worth naming: a direction no support holds at all
+    // (the whole model can translate along it).
+    std::string free_directions;
+    for (int c = 0; c < 3; ++c) {
+      bool held = false;
+      for (const auto& support : model.supports) held = held || (support.fixed[c] && !support.nodes.empty());
+      if (!held) free_directions += std::string(free_directions.empty() ? "" : ", ") + "xyz"[c];
+    }
+    const std::string cause =
+        free_directions.empty()
+            ? std::string("the model has a rigid-body mode left unsupported or an element without stiffness")
+            : fmt::format("no support fixes displacements along {}, so the model can move freely "
+                          "(a rigid-body mode left unsupported)",
+                          free_directions);
+    fail("stiffness matrix is not positive definite at node {} direction {} (equation {}): {}",
+         dof / 3, "xyz"[dof % 3], error.equation(), cause);
   }
 }
 

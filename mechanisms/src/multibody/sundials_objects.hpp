@@ -53,9 +53,13 @@ struct DenseSolver {
   DenseSolver& operator=(const DenseSolver&) = delete;
 };
 
+// SUNDIALS prints its own error messages to stderr by default; ours are
+// thrown as one-line Errors (flag and time), so its printing is switched off.
 struct IdaMemory {
   void* mem = nullptr;
-  explicit IdaMemory(SUNContext ctx) : mem(sundials_check_ptr(IDACreate(ctx), "IDACreate")) {}
+  explicit IdaMemory(SUNContext ctx) : mem(sundials_check_ptr(IDACreate(ctx), "IDACreate")) {
+    IDASetErrFile(mem, nullptr);
+  }
   ~IdaMemory() { IDAFree(&mem); }
   IdaMemory(const IdaMemory&) = delete;
   IdaMemory& operator=(const IdaMemory&) = delete;
@@ -63,7 +67,9 @@ struct IdaMemory {
 
 struct CvodeMemory {
   void* mem = nullptr;
-  explicit CvodeMemory(SUNContext ctx) : mem(sundials_check_ptr(CVodeCreate(CV_BDF, ctx), "CVodeCreate")) {}
+  explicit CvodeMemory(SUNContext ctx) : mem(sundials_check_ptr(CVodeCreate(CV_BDF, ctx), "CVodeCreate")) {
+    CVodeSetErrFile(mem, nullptr);
+  }
   ~CvodeMemory() { CVodeFree(&mem); }
   CvodeMemory(const CvodeMemory&) = delete;
   CvodeMemory& operator=(const CvodeMemory&) = delete;

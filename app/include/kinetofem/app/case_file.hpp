@@ -10,9 +10,18 @@
 //
 // Paths use dots; elements of an array of tables are written `name[]`
 // (e.g. "support[].set"), and getters take the element's index.
+//
+// Overrides (`kinetofem run CASE --set key=value`): each "key=value" replaces
+// or adds one key after the file is read. The value is parsed as a TOML value
+// (number, "string", [array], true/false; a bare word that is not valid TOML
+// is taken as a string); the key is a leaf key of the schema, an element of an
+// array of tables written with its index (`force[0].total_n=[0, 5e3, 0]`).
+// An override is checked like a key in the file, and its errors (and where())
+// name the override ("--set mesh.element_size_mm=-2: ...").
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,7 +30,9 @@
 namespace kinetofem::app {
 
 struct KeySpec {
-  enum class Type { Number, Integer, String, Boolean, Vector3, StringList, TableArray };
+  // Array: any TOML array, its elements checked by the code that reads it
+  // (e.g. the [sweep] table read by `kinetofem batch`).
+  enum class Type { Number, Integer, String, Boolean, Vector3, StringList, TableArray, Array };
   std::string path;
   Type type = Type::Number;
   std::string unit;           // as written in the case file ("mm", "MPa", "N", ...)
@@ -42,13 +53,24 @@ class CaseFile {
   // an unknown key or a bad value.
   // allow_unknown skips the unknown-key check (to read one key, e.g. case.type,
   // before the schema of the case's type is known).
+  // overrides: "key=value" strings applied in order after the file is read
+  // (with allow_unknown, an override of an undeclared key is applied unchecked).
   static CaseFile load(const std::filesystem::path& path, std::vector<KeySpec> schema,
-                       bool allow_unknown = false);
+                       bool allow_unknown = false, const std::vector<std::string>& overrides = {});
   static CaseFile parse(const std::string& text, const std::filesystem::path& path,
-                        std::vector<KeySpec> schema, bool allow_unknown = false);
+                        std::vector<KeySpec> schema, bool allow_unknown = false,
+                        const std::vector<std::string>& overrides = {});
 
   const std::filesystem::path& path() const { return path_; }
+  // The file's text as read (without the overrides).
   const std::string& text() const { return text_; }
+  // The overrides applied, as given ("key=value").
+  const std::vector<std::string>& overrides() const { return override_texts_; }
+  // The raw TOML node of a key (file or override), nullptr if absent: for
+  // keys of Type::Array whose elements the caller checks itself.
+  const toml::node* node(const std::string& path, std::size_t element = 0) const {
+    return find(path, element);
+  }
 
   bool has(const std::string& path, std::size_t element = 0) const;
   // SI value of a Number key (its default if absent; Error if required and absent).
@@ -61,21 +83,29 @@ class CaseFile {
   // Number of elements of an array of tables (0 if absent).
   std::size_t count(const std::string& array_path) const;
 
-  // "file:line: key" for messages.
+  // "file:line: key" for messages ("file: key 'k' (--set k=v)" for an override).
   std::string where(const std::string& path, std::size_t element = 0) const;
 
  private:
   const KeySpec& spec(const std::string& path) const;
   const toml::node* find(const std::string& path, std::size_t element) const;
   void check_table(const toml::table& table, const std::string& prefix) const;
-  void check_value(const KeySpec& spec, const toml::node& node, const std::string& shown) const;
+  // `at` opens every message: "file:line: key 'k'" or "--set k=v: key 'k'".
+  void check_value(const KeySpec& spec, const toml::node& node, const std::string& at) const;
+  void apply_override(const std::string& text);
 
   std::filesystem::path path_;
   std::string text_;
   toml::table root_;
   std::vector<KeySpec> schema_;
   bool allow_unknown_ = false;
+  std::vector<std::string> override_texts_;
+  std::vector<std::string> override_keys_;  // as shown: "force[0].total_n"
 };
+
+// Splits "key=value" at the first '=' (key and value trimmed); Error naming
+// the override if there is no '=' or no key.
+std::pair<std::string, std::string> split_override(const std::string& text);
 
 // A commented TOML template of a schema: every key with its doc, unit,
 // range and default.

@@ -18,5 +18,7 @@ struct CommandContext {
 
 void add_run_command(CLI::App& app, CommandContext& context);   // kinetofem run CASE
 void add_case_command(CLI::App& app, CommandContext& context);  // kinetofem case --template TYPE
+void add_post_command(CLI::App& app, CommandContext& context);  // kinetofem post RESULT.h5
+void add_batch_command(CLI::App& app, CommandContext& context);  // kinetofem batch CASES... --jobs N
 
 }  // namespace kinetofem::app

@@ -3,7 +3,10 @@
 // summary and returns the process exit code. Errors are thrown as
 // kinetofem::Error and caught once in main().
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace kinetofem::app {
 
@@ -12,7 +15,28 @@ struct RunOptions {
   std::filesystem::path output_dir = "results";
   bool quiet = false;
   std::string command_line;  // recorded in the results' provenance
+  std::vector<std::string> overrides;  // --set KEY=VALUE, applied after the case file is read
 };
+
+// Key results of a finished run, written by each job as
+// OUTPUT_DIR/<name>.summary.toml (atomically: temporary file + rename) and
+// read back by the batch. SI inside; the file holds MPa and mm.
+struct RunSummary {
+  std::string name;  // case name: OUTPUT_DIR/<name>.h5
+  std::string type;  // case type ("fe_static", "manipulator")
+  std::filesystem::path results_file;
+  double wall_time_s = 0.0;
+  double max_von_mises_pa = 0.0;
+  double max_displacement_m = 0.0;
+  // Further key results, the unit in the key's name ("max_drive_torque_nm").
+  std::vector<std::pair<std::string, double>> extra;
+};
+
+std::filesystem::path run_summary_path(const std::filesystem::path& output_dir,
+                                       const std::string& name);
+void write_run_summary(const std::filesystem::path& output_dir, const RunSummary& summary);
+// nullopt if the file is absent or unreadable (a run that did not finish).
+std::optional<RunSummary> read_run_summary(const std::filesystem::path& file);
 
 // Reads the case file and runs the analysis it describes.
 int run_case(const RunOptions& options);

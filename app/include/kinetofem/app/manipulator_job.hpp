@@ -23,6 +23,9 @@ struct LinkSummary {
   double peak_displacement_m = 0, peak_displacement_time_s = 0;
   double static_von_mises_pa = 0, static_displacement_m = 0;
   double factorize_seconds = 0, solve_seconds = 0;
+  double assembly_seconds = 0, recovery_seconds = 0, analyze_seconds = 0;
+  double factor_nonzeros = 0, factor_bytes = 0, factorization_flops = 0;
+  long right_hand_sides = 0;
 };
 
 struct ManipulatorSummary {
@@ -32,6 +35,7 @@ struct ManipulatorSummary {
   double static_max_von_mises_pa = 0, static_max_displacement_m = 0;  // static pose study
   double max_drive_torque_nm = 0, min_chain_tension_n = 0, max_chain_tension_n = 0;
   std::filesystem::path results_file;
+  double meshing_seconds = 0, dynamics_seconds = 0, total_seconds = 0;
 };
 
 ManipulatorSummary run_manipulator(const CaseFile& case_file, const RunOptions& options);

@@ -27,7 +27,9 @@
 //     Error.
 // Errors (kinetofem::Error, the message naming the file): missing, empty,
 // truncated (no closing "$End..." line) or unreadable files, unsupported
-// element types, a file without volume elements.
+// element types, a file without volume elements, a non-finite node
+// coordinate, an inverted or degenerate element (Jacobian determinant not
+// positive: fem::check_element_jacobians).
 #include <filesystem>
 
 #include "kinetofem/solver/mesh.hpp"

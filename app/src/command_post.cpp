@@ -1,0 +1,334 @@
+// kinetofem post RESULT.h5 — post-processing of a results file: a summary
+// (bodies, fields, envelope maxima with time and place, hot spots), time
+// histories at a node or of the mechanism, CSV files and PNG pictures.
+// docs/postproc.md describes the options and the files written.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "kinetofem/app/commands.hpp"
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/postproc/csv_export.hpp"
+#include "kinetofem/postproc/hot_spots.hpp"
+#include "kinetofem/postproc/png_plots.hpp"
+#include "kinetofem/postproc/results_file.hpp"
+#include "kinetofem/postproc/time_history.hpp"
+
+namespace kinetofem::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PostOptions {
+  fs::path results;
+  int hot_spots = 5;
+  double separation_mm = 10.0;
+  std::string history;  // NODE, x,y,z (mm) or a mechanism history name
+  std::string body;
+  std::string field = "von_mises";
+  fs::path csv_dir, png_dir;
+  bool all = false;
+  double deformation_scale = 0.0;  // 0: automatic
+  std::string image_size = "1400x900";
+};
+
+// "WIDTHxHEIGHT" in px.
+std::pair<int, int> parse_image_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, rest = 0;
+  require(std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && (x == 'x' || x == 'X'),
+          "--image-size '{}': expected WIDTHxHEIGHT in px, e.g. 1400x900", text);
+  require(w >= 400 && h >= 300 && w <= 8000 && h <= 8000, "--image-size '{}': from 400x300 to 8000x8000 px", text);
+  return {w, h};
+}
+
+// What --history names: a node, a point (m) or a mechanism history.
+struct HistorySpec {
+  std::optional<fem::Index> node;
+  std::optional<Eigen::Vector3d> point_m;
+  std::string mechanism;
+};
+
+HistorySpec parse_history(const std::string& text) {
+  HistorySpec spec;
+  if (!text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    spec.node = std::stoll(text);
+    return spec;
+  }
+  if (text.find(',') != std::string::npos) {
+    std::vector<double> xyz;
+    size_t start = 0;
+    while (start <= text.size()) {
+      const size_t end = std::min(text.find(',', start), text.size());
+      const std::string item = text.substr(start, end - start);
+      size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      require(used > 0 && used == item.size() && std::isfinite(v),
+              "--history '{}': '{}' is not a number; expected NODE or x,y,z in mm", text, item);
+      xyz.push_back(v);
+      start = end + 1;
+    }
+    require(xyz.size() == 3, "--history '{}': {} coordinates; expected NODE or x,y,z in mm", text, xyz.size());
+    spec.point_m = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]) * 1e-3;
+    return spec;
+  }
+  spec.mechanism = text;
+  return spec;
+}
+
+std::string listed(const std::vector<std::string>& names) {
+  if (names.empty()) return "none";
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+std::string where(const fem::NodeCoordinates& nodes, fem::Index n) {
+  return fmt::format("node {} ({:.1f}, {:.1f}, {:.1f}) mm", n, nodes(n, 0) * 1e3, nodes(n, 1) * 1e3,
+                     nodes(n, 2) * 1e3);
+}
+
+std::string when(double t) { return std::isnan(t) ? "static" : fmt::format("t = {:.4f} s", t); }
+
+void print_summary(const post::ResultsFile& r, const std::vector<post::HotSpot>& spots, const std::string& units,
+                   const PostOptions& o) {
+  const post::Provenance p = r.provenance();
+  fmt::print("kinetofem post: {}\n", r.path().string());
+  fmt::print("  case {}, written {} by kinetofem {} ({})\n", p.case_path.empty() ? "?" : p.case_path,
+             p.created_utc, p.kinetofem_version, p.git_commit);
+  fmt::print("  bodies:\n");
+  for (const auto& body : r.bodies()) {
+    const fem::Mesh mesh = r.read_mesh(body);
+    fmt::print("    {}: {} nodes, {} elements\n", body, mesh.node_count(), mesh.element_count());
+    const auto times = r.series_times(body);
+    if (!times.empty())
+      fmt::print("      series: {} output times, {:.4g} .. {:.4g} s: {}\n", times.size(), times.front(),
+                 times.back(), listed(r.series_fields(body)));
+    fmt::print("      static fields: {}\n", listed(r.static_fields(body)));
+    if (!r.element_fields(body).empty()) fmt::print("      element fields: {}\n", listed(r.element_fields(body)));
+    fmt::print("      envelopes: {}\n", listed(r.envelopes(body)));
+  }
+
+  fmt::print("  maxima (envelopes over the motion; static fields of static load cases):\n");
+  for (const auto& body : r.bodies()) {
+    std::vector<std::string> fields = r.envelopes(body);
+    for (const auto& f : r.series_fields(body))
+      if (std::find(fields.begin(), fields.end(), f) == fields.end() && r.read_step(body, f, 0).values.cols() == 1)
+        fields.push_back(f);
+    for (const auto& f : r.static_fields(body))
+      if (r.read_static(body, f).values.cols() == 1 && std::find(fields.begin(), fields.end(), f) == fields.end())
+        fields.push_back(f);
+    for (const auto& f : fields) {
+      post::BodyEnvelope env;
+      try {
+        env = post::max_envelope(r, body, f);
+      } catch (const Error&) {
+        continue;  // a multi-component or non-"max" field: nothing to rank
+      }
+      const post::DisplayUnit u = post::display_unit(env.units);
+      const fem::Index n = env.peak_node();
+      fmt::print("    {:<8} {:<24} {:>11.4f} {:<4} {:<16} {}  [{}]\n", body, f, env.peak_value() * u.factor, u.label,
+                 when(env.time_of(n)), where(env.nodes_m, n), env.source_name());
+    }
+  }
+
+  const auto histories = r.histories();
+  if (!histories.empty()) {
+    const auto t = r.mechanism_time();
+    fmt::print("  mechanism histories ({} times, {:.4g} .. {:.4g} s), range over the motion:\n", t.size(),
+               t.empty() ? 0.0 : t.front(), t.empty() ? 0.0 : t.back());
+    for (const auto& name : histories) {
+      const post::TimeHistory h = post::mechanism_history(r, name);
+      const post::DisplayUnit u = post::display_unit(h.units);
+      for (long c = 0; c < h.values.cols(); ++c) {
+        const std::string label =
+            h.values.cols() == 1 ? name
+                                 : name + "_" + (size_t(c) < h.component_names.size() ? h.component_names[size_t(c)] : std::to_string(c));
+        fmt::print("    {:<34} {:>12.4f} .. {:>12.4f} {}\n", label, h.values.col(c).minCoeff() * u.factor,
+                   h.values.col(c).maxCoeff() * u.factor, u.label);
+      }
+    }
+  }
+
+  fmt::print("  top {} hot spots of {} (nodes within {:g} mm of a listed one on the same body skipped):\n",
+             o.hot_spots, o.field, o.separation_mm);
+  const post::DisplayUnit u = post::display_unit(units);
+  fmt::print("    {:>2}  {:<8} {:>7} {:>9} {:>9} {:>9}  {:<16} {:>10}\n", "#", "body", "node", "x [mm]", "y [mm]",
+             "z [mm]", "time", "[" + u.label + "]");
+  for (size_t i = 0; i < spots.size(); ++i) {
+    const auto& s = spots[i];
+    fmt::print("    {:>2}  {:<8} {:>7} {:>9.1f} {:>9.1f} {:>9.1f}  {:<16} {:>10.3f}\n", i + 1, s.body, s.node,
+               s.position_m.x() * 1e3, s.position_m.y() * 1e3, s.position_m.z() * 1e3, when(s.time_s),
+               s.value * u.factor);
+  }
+}
+
+post::TimeHistory history_of(const post::ResultsFile& r, const PostOptions& o) {
+  const HistorySpec spec = parse_history(o.history);
+  if (!spec.mechanism.empty()) return post::mechanism_history(r, spec.mechanism);
+  require(!o.body.empty(), "--history {}: a node history needs --body (bodies: {})", o.history, listed(r.bodies()));
+  const auto bodies = r.bodies();
+  require(std::find(bodies.begin(), bodies.end(), o.body) != bodies.end(), "--body '{}': '{}' has no such body (bodies: {})",
+          o.body, r.path().string(), listed(bodies));
+  fem::Index node = 0;
+  if (spec.node) {
+    node = *spec.node;
+  } else {
+    const fem::NodeCoordinates nodes = r.read_mesh(o.body).nodes;
+    node = post::nearest_node(nodes, *spec.point_m);
+    fmt::print("  nearest node to ({}) mm on '{}': {}, {:.2f} mm away\n", o.history, o.body, where(nodes, node),
+               (nodes.row(node).transpose() - *spec.point_m).norm() * 1e3);
+  }
+  return post::node_history(r, o.body, o.field, node);
+}
+
+void print_history(const post::TimeHistory& h) {
+  const post::DisplayUnit u = post::display_unit(h.units);
+  fmt::print("  time history: {} [{}]\n", h.description, u.label);
+  for (size_t k = 0; k < h.time_s.size(); ++k) {
+    std::string row = fmt::format("    {:>10.5f}", h.time_s[k]);
+    for (long c = 0; c < h.values.cols(); ++c) row += fmt::format(" {:>14.6g}", h.values(long(k), c) * u.factor);
+    fmt::print("{}\n", row);
+  }
+}
+
+fs::path make_directory(const fs::path& dir, const char* option) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  require(!ec && fs::is_directory(dir), "{} {}: cannot create the directory: {}", option, dir.string(),
+          ec ? ec.message() : "not a directory");
+  return dir;
+}
+
+std::string file_safe(std::string s) {
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+  return s;
+}
+
+int run_post(const PostOptions& o) {
+  require(fs::exists(o.results), "{}: no such results file", o.results.string());
+  require(fs::is_regular_file(o.results), "{}: not a file", o.results.string());
+  require(o.hot_spots >= 0, "--hot-spots {}: must be 0 or more", o.hot_spots);
+  require(o.separation_mm >= 0, "--separation-mm {}: must be 0 or more", o.separation_mm);
+  const auto [width_px, height_px] = parse_image_size(o.image_size);
+  const post::ResultsFile r = post::ResultsFile::open(o.results);
+
+  // Check the history request before any output, so a typo fails fast.
+  std::optional<post::TimeHistory> history;
+  if (!o.history.empty()) history = history_of(r, o);
+  else require(o.body.empty(), "--body '{}' given without --history", o.body);
+
+  const std::vector<post::BodyEnvelope> envelopes = post::max_envelopes(r, o.field);
+  if (envelopes.empty() && !r.bodies().empty())
+    fail("--field '{}': no body of '{}' has this field (bodies: {}; fields of '{}': static {}, series {})", o.field,
+         r.path().string(), listed(r.bodies()), r.bodies().front(), listed(r.static_fields(r.bodies().front())),
+         listed(r.series_fields(r.bodies().front())));
+  const std::vector<post::HotSpot> spots =
+      post::find_hot_spots(envelopes, {.count = o.hot_spots, .separation_m = o.separation_mm * 1e-3});
+  print_summary(r, spots, envelopes.empty() ? std::string("Pa") : envelopes.front().units, o);
+  if (history) print_history(*history);
+
+  fs::path csv_dir = o.csv_dir, png_dir = o.png_dir;
+  if (o.all) {
+    const fs::path dir = o.results.parent_path() / (o.results.stem().string() + "_post");
+    if (csv_dir.empty()) csv_dir = dir;
+    if (png_dir.empty()) png_dir = dir;
+  }
+  std::vector<std::string> written;
+  if (!csv_dir.empty()) {
+    make_directory(csv_dir, "--csv");
+    if (!envelopes.empty()) {
+      post::write_hot_spots_csv(csv_dir / "hot_spots.csv", spots, o.field, envelopes.front().units);
+      written.push_back((csv_dir / "hot_spots.csv").string());
+    }
+    for (const auto& body : r.bodies()) {
+      const fs::path p = csv_dir / (file_safe(body) + "_nodes.csv");
+      post::write_body_fields_csv(p, r, body);
+      written.push_back(p.string());
+    }
+    if (!r.histories().empty()) {
+      post::write_mechanism_csv(csv_dir / "mechanism.csv", r);
+      written.push_back((csv_dir / "mechanism.csv").string());
+    }
+    if (history) {
+      const std::string name = o.body.empty() ? history->quantity : o.body + "_" + o.field + "_" + o.history;
+      const fs::path p = csv_dir / ("history_" + file_safe(name) + ".csv");
+      post::write_history_csv(p, *history);
+      written.push_back(p.string());
+    }
+  }
+  if (!png_dir.empty()) {
+    make_directory(png_dir, "--png");
+    if (!envelopes.empty()) {
+      post::StressPictureOptions so;
+      so.field = o.field;
+      so.deformation_scale = o.deformation_scale;
+      so.width_px = width_px;
+      so.height_px = height_px;
+      const fs::path p = png_dir / (file_safe(o.field) + "_critical.png");
+      const post::StressPictureInfo info = post::write_stress_picture(r, p, so);
+      written.push_back(fmt::format("{}  ({}, deformation x{:g})", p.string(), when(info.time_s), info.deformation_scale));
+    }
+    bool has_loads = false;
+    for (const auto& name : r.histories()) {
+      const std::string units = r.read_history(name).units;
+      has_loads = has_loads || units == "N" || units == "N*m";
+    }
+    const post::PictureOptions po{.title_name = "", .width_px = width_px, .height_px = height_px};
+    if (has_loads) {
+      post::write_mechanism_loads_picture(r, png_dir / "mechanism_loads.png", po);
+      written.push_back((png_dir / "mechanism_loads.png").string());
+    }
+    for (const auto& name : r.histories())
+      if (name.rfind("gripper_point_", 0) == 0) {
+        const fs::path p = png_dir / ("path_" + file_safe(name.substr(14)) + ".png");
+        post::write_path_picture(r, p, name, po);
+        written.push_back(p.string());
+      }
+  }
+  if (!written.empty()) {
+    fmt::print("  written:\n");
+    for (const auto& w : written) fmt::print("    {}\n", w);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_post_command(CLI::App& app, CommandContext& context) {
+  auto o = std::make_shared<PostOptions>();
+  auto* post = app.add_subcommand("post", "Post-process a results file: summary, hot spots, histories, CSV, PNG");
+  post->add_option("results", o->results, "Results file (RESULT.h5) written by `kinetofem run`")->required();
+  post->add_option("--hot-spots", o->hot_spots, "Number of hot spots to list")->capture_default_str();
+  post->add_option("--separation-mm", o->separation_mm, "Hot spots: skip nodes this close to a listed one (mm)")
+      ->capture_default_str();
+  post->add_option("--history", o->history,
+                   "Time history: NODE (index) or x,y,z (mm, nearest node) with --body, or a mechanism history name");
+  post->add_option("--body", o->body, "Body of a node history");
+  post->add_option("--field", o->field, "Field for hot spots, pictures and node histories")->capture_default_str();
+  post->add_option("--csv", o->csv_dir, "Write CSV files into this directory");
+  post->add_option("--png", o->png_dir, "Write PNG pictures into this directory");
+  post->add_option("--deformation-scale", o->deformation_scale, "Deformation scale of the stress picture (0: automatic)")
+      ->capture_default_str();
+  post->add_option("--image-size", o->image_size, "Size of the PNG pictures, WIDTHxHEIGHT in px")
+      ->capture_default_str();
+  post->add_flag("--all", o->all, "Write every CSV and PNG into <result dir>/<name>_post/");
+  post->callback([o, &context] { context.exit_code = run_post(*o); });
+}
+
+}  // namespace kinetofem::app

@@ -1,0 +1,633 @@
+#include "kinetofem/app/linkage_job.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/mechanisms/multibody/dynamics.hpp"
+#include "kinetofem/mechanisms/multibody/kinematics.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
+
+namespace kinetofem::app {
+
+namespace {
+using Type = KeySpec::Type;
+constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0, kRpm = 2.0 * std::numbers::pi / 60.0;
+
+const std::vector<std::string> kLaws = {"polynomial345", "cycloidal", "trapezoidal", "constant_velocity", "csv"};
+
+// Keys of a relative coordinate (drives, the CVODES coordinate) under `prefix`.
+void add_coordinate_keys(std::vector<KeySpec>& s, const std::string& prefix, bool required) {
+  s.push_back({.path = prefix + "coordinate", .type = Type::String, .default_text = "angle", .allowed = {"angle", "displacement"},
+               .doc = "angle: s = theta_j - theta_i (deg); displacement: s = u_i . (P_j - P_i) along axis (mm)"});
+  s.push_back({.path = prefix + "body_i", .type = Type::String, .doc = "reference body (the effort's reaction acts on it)", .required = required});
+  s.push_back({.path = prefix + "point_i", .type = Type::String, .default_text = "origin", .doc = "point of body_i (displacement)"});
+  s.push_back({.path = prefix + "body_j", .type = Type::String, .doc = "driven body (the effort acts on it)", .required = required});
+  s.push_back({.path = prefix + "point_j", .type = Type::String, .default_text = "origin", .doc = "point of body_j (displacement)"});
+  s.push_back({.path = prefix + "axis", .type = Type::Array, .doc = "displacement direction [x, y] in body_i's frame; default [1, 0]"});
+}
+
+// Keys of a motion law under `prefix` (law key named `law_key`).
+void add_law_keys(std::vector<KeySpec>& s, const std::string& prefix, const std::string& law_key, bool has_default) {
+  KeySpec law{.path = prefix + law_key, .type = Type::String, .allowed = kLaws,
+              .doc = "motion law s(t): rises by the stroke over [0, duration] and dwells outside (constant_velocity: s = speed t; csv: a table)"};
+  if (has_default) law.default_text = "polynomial345";
+  s.push_back(law);
+  s.push_back({.path = prefix + "stroke_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "stroke of an angle law"});
+  s.push_back({.path = prefix + "stroke_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "stroke of a displacement law"});
+  s.push_back({.path = prefix + "duration_s", .type = Type::Number, .unit = "s", .min = 0, .min_exclusive = true, .doc = "duration of the rise (polynomial345, cycloidal, trapezoidal)"});
+  s.push_back({.path = prefix + "accel_fraction", .type = Type::Number, .default_number = 0.25, .min = 0, .max = 1, .min_exclusive = true, .doc = "trapezoidal: acceleration time fraction kP"});
+  s.push_back({.path = prefix + "decel_fraction", .type = Type::Number, .default_number = 0.25, .min = 0, .max = 1, .min_exclusive = true, .doc = "trapezoidal: deceleration time fraction kT"});
+  s.push_back({.path = prefix + "speed_deg_s", .type = Type::Number, .unit = "deg/s", .to_si = kDeg, .doc = "constant_velocity: rate of an angle"});
+  s.push_back({.path = prefix + "speed_mm_s", .type = Type::Number, .unit = "mm/s", .to_si = kMm, .doc = "constant_velocity: rate of a displacement"});
+  s.push_back({.path = prefix + "file", .type = Type::String, .doc = "csv: file of rows 't_s, s' (s in deg or mm), relative to the case file"});
+}
+
+// A law whose values are those of another times a factor (csv tables in deg or mm).
+class ScaledLaw final : public mech::MotionLaw {
+ public:
+  ScaledLaw(std::shared_ptr<const mech::MotionLaw> law, double factor) : law_(std::move(law)), factor_(factor) {}
+  mech::MotionState at(double t) const override {
+    const mech::MotionState m = law_->at(t);
+    return {factor_ * m.s, factor_ * m.s_dot, factor_ * m.s_ddot};
+  }
+  double stroke() const override { return factor_ * law_->stroke(); }
+  double duration() const override { return law_->duration(); }
+  std::string describe() const override { return fmt::format("{} (x {:g} to SI)", law_->describe(), factor_); }
+
+ private:
+  std::shared_ptr<const mech::MotionLaw> law_;
+  double factor_;
+};
+
+bool valid_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.';
+  });
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
+// Reads and checks the names: bodies, their points, joints, drives.
+class Reader {
+ public:
+  explicit Reader(const CaseFile& c) : c_(c) {}
+
+  std::string name_key(const std::string& path, std::size_t k, const char* what, std::set<std::string>& seen) const {
+    const std::string name = c_.text_value(path, k);
+    require(valid_name(name), "{} = \"{}\": a {} name may hold letters, digits, '_', '-' and '.' only", c_.where(path, k),
+            name, what);
+    require(seen.insert(name).second, "{} = \"{}\": a second {} of that name", c_.where(path, k), name, what);
+    return name;
+  }
+
+  // Index of the body named by key `path` (element k).
+  std::size_t body(const std::vector<mech::Body>& bodies, const std::string& path, std::size_t k) const {
+    const std::string name = c_.text_value(path, k);
+    std::vector<std::string> names;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (bodies[b].name == name) return b;
+      names.push_back(bodies[b].name);
+    }
+    fail("{} = \"{}\": no body of that name (bodies: {})", c_.where(path, k), name, join_names(names));
+  }
+
+  // The point named by key `path` on body `b`.
+  std::string point(const mech::Body& b, const std::string& path, std::size_t k) const {
+    const std::string name = c_.text_value(path, k);
+    if (name == "origin" || b.points.contains(name)) return name;
+    std::vector<std::string> names = {"origin"};
+    for (const auto& [n, p] : b.points) names.push_back(n);
+    fail("{} = \"{}\": body '{}' has no point of that name (points: {})", c_.where(path, k), name, b.name,
+         join_names(names));
+  }
+
+  mech::RelativeCoordinate coordinate(const std::vector<mech::Body>& bodies, const std::string& prefix,
+                                      std::size_t k) const {
+    mech::RelativeCoordinate rc;
+    rc.type = c_.text_value(prefix + "coordinate", k) == "angle" ? mech::CoordinateType::Angle
+                                                                 : mech::CoordinateType::Displacement;
+    const std::size_t bi = body(bodies, prefix + "body_i", k), bj = body(bodies, prefix + "body_j", k);
+    require(bi != bj, "{} = \"{}\": body_j must differ from body_i", c_.where(prefix + "body_j", k), bodies[bj].name);
+    rc.body_i = bodies[bi].name;
+    rc.body_j = bodies[bj].name;
+    rc.point_i = point(bodies[bi], prefix + "point_i", k);
+    rc.point_j = point(bodies[bj], prefix + "point_j", k);
+    rc.axis_i = read_vector2(c_, prefix + "axis", k, 1.0, {1.0, 0.0});
+    require(rc.axis_i.norm() > 0, "{}: the axis must not be zero", c_.where(prefix + "axis", k));
+    return rc;
+  }
+
+  // A number key given in the coordinate's unit: `base`_deg for angles, `base`_mm for displacements.
+  std::optional<double> coordinate_number(const std::string& prefix, const std::string& base, const std::string& suffix_deg,
+                                          const std::string& suffix_mm, bool angle, std::size_t k) const {
+    const std::string mine = prefix + base + (angle ? suffix_deg : suffix_mm);
+    const std::string other = prefix + base + (angle ? suffix_mm : suffix_deg);
+    require(!c_.has(other, k), "{}: this drive's coordinate is {}: use '{}{}'", c_.where(other, k),
+            angle ? "an angle" : "a displacement", base, angle ? suffix_deg : suffix_mm);
+    if (!c_.has(mine, k)) return std::nullopt;
+    return c_.number(mine, k);
+  }
+
+  std::shared_ptr<const mech::MotionLaw> law(const std::string& prefix, const std::string& law_key, bool angle,
+                                             std::size_t k) const {
+    const std::string law = c_.text_value(prefix + law_key, k);
+    const std::string at = c_.where(prefix + law_key, k);
+    if (law == "csv") {
+      require(c_.has(prefix + "file", k), "{} = \"csv\": needs 'file' (rows t_s, s in {})", at, angle ? "deg" : "mm");
+      std::filesystem::path file = c_.text_value(prefix + "file", k);
+      if (file.is_relative()) file = c_.path().parent_path() / file;
+      require(std::filesystem::is_regular_file(file), "{} = \"{}\": no such file ({})", c_.where(prefix + "file", k),
+              c_.text_value(prefix + "file", k), file.string());
+      try {
+        auto table = std::make_shared<mech::TabulatedLaw>(mech::TabulatedLaw::from_csv(file.string()));
+        return std::make_shared<ScaledLaw>(table, angle ? kDeg : kMm);
+      } catch (const Error& e) {
+        fail("{}: {}", c_.where(prefix + "file", k), e.what());
+      }
+    }
+    if (law == "constant_velocity") {
+      const auto speed = coordinate_number(prefix, "speed", "_deg_s", "_mm_s", angle, k);
+      require(speed.has_value(), "{} = \"constant_velocity\": needs '{}'", at, angle ? "speed_deg_s" : "speed_mm_s");
+      return std::make_shared<mech::ConstantVelocityLaw>(*speed);
+    }
+    const auto stroke = coordinate_number(prefix, "stroke", "_deg", "_mm", angle, k);
+    require(stroke.has_value(), "{} = \"{}\": needs '{}'", at, law, angle ? "stroke_deg" : "stroke_mm");
+    require(c_.has(prefix + "duration_s", k), "{} = \"{}\": needs 'duration_s'", at, law);
+    const double duration = c_.number(prefix + "duration_s", k);
+    if (law == "cycloidal") return std::make_shared<mech::CycloidalLaw>(*stroke, duration);
+    if (law == "trapezoidal") {
+      const double kp = c_.number(prefix + "accel_fraction", k), kt = c_.number(prefix + "decel_fraction", k);
+      require(kp + kt <= 1.0, "{}: accel_fraction + decel_fraction = {:g} must not exceed 1", at, kp + kt);
+      return std::make_shared<mech::TrapezoidalLaw>(*stroke, duration, kp, kt);
+    }
+    return std::make_shared<mech::Polynomial345Law>(*stroke, duration);
+  }
+
+ private:
+  const CaseFile& c_;
+};
+
+}  // namespace
+
+const std::vector<KeySpec>& linkage_schema() {
+  static const std::vector<KeySpec> schema = [] {
+    std::vector<KeySpec> s = mechanism_case_keys("linkage");
+    // bodies and points
+    s.push_back({.path = "body", .type = Type::TableArray, .doc = "rigid bodies"});
+    s.push_back({.path = "body[].name", .type = Type::String, .doc = "body name (letters, digits, _ - .)", .required = true});
+    s.push_back({.path = "body[].mass_kg", .type = Type::Number, .unit = "kg", .default_number = 0, .min = 0, .doc = "mass of the bare body"});
+    s.push_back({.path = "body[].inertia_kgm2", .type = Type::Number, .unit = "kg*m^2", .default_number = 0, .min = 0, .doc = "moment of inertia about the bare body's centre of mass"});
+    s.push_back({.path = "body[].com_mm", .type = Type::Array, .unit = "mm", .doc = "centre of mass [x, y] in the body frame; default [0, 0]"});
+    s.push_back({.path = "body[].pose_mm_deg", .type = Type::Vector3, .default_number = 0,
+                 .doc = "pose [x mm, y mm, theta deg] of the body frame: the ground's pose, else the initial guess for assembly"});
+    s.push_back({.path = "body[].velocity_mm_s_deg_s", .type = Type::Vector3, .default_number = 0,
+                 .doc = "initial velocity guess [x' mm/s, y' mm/s, theta' deg/s] of the body frame origin (projected onto the constraints)"});
+    s.push_back({.path = "body[].fixed", .type = Type::Boolean, .default_number = 0, .doc = "true for the ground (no coordinates)"});
+    s.push_back({.path = "point", .type = Type::TableArray, .doc = "named points of bodies ('origin' exists on every body)"});
+    s.push_back({.path = "point[].body", .type = Type::String, .doc = "body the point belongs to", .required = true});
+    s.push_back({.path = "point[].name", .type = Type::String, .doc = "point name, unique on its body", .required = true});
+    s.push_back({.path = "point[].at_mm", .type = Type::Array, .unit = "mm", .doc = "[x, y] in the body frame", .required = true});
+    s.push_back({.path = "point_mass", .type = Type::TableArray, .doc = "lumped masses (gripper, casting) added to a body"});
+    s.push_back({.path = "point_mass[].body", .type = Type::String, .doc = "body carrying the mass", .required = true});
+    s.push_back({.path = "point_mass[].name", .type = Type::String, .doc = "name", .required = true});
+    s.push_back({.path = "point_mass[].mass_kg", .type = Type::Number, .unit = "kg", .min = 0, .doc = "mass", .required = true});
+    s.push_back({.path = "point_mass[].at_mm", .type = Type::Array, .unit = "mm", .doc = "[x, y] in the body frame; default [0, 0]"});
+    s.push_back({.path = "point_mass[].at_point", .type = Type::String, .doc = "a named point of the body instead of at_mm"});
+    // joints
+    s.push_back({.path = "joint", .type = Type::TableArray, .doc = "joints between two bodies"});
+    s.push_back({.path = "joint[].name", .type = Type::String, .doc = "joint name", .required = true});
+    s.push_back({.path = "joint[].type", .type = Type::String, .allowed = {"revolute", "prismatic", "fixed", "chain"},
+                 .doc = "revolute: points coincide; prismatic: point_j slides on the line through point_i along axis; fixed: welded; "
+                        "chain: chain hinged at point_i of body_i wrapped on a roller (radius_mm) centred at point_j of body_j",
+                 .required = true});
+    s.push_back({.path = "joint[].body_i", .type = Type::String, .doc = "first body (chain: the body carrying the hinge)", .required = true});
+    s.push_back({.path = "joint[].point_i", .type = Type::String, .default_text = "origin", .doc = "point of body_i"});
+    s.push_back({.path = "joint[].body_j", .type = Type::String, .doc = "second body (chain: the body carrying the roller)", .required = true});
+    s.push_back({.path = "joint[].point_j", .type = Type::String, .default_text = "origin", .doc = "point of body_j (chain: roller centre)"});
+    s.push_back({.path = "joint[].axis", .type = Type::Array, .doc = "prismatic: sliding direction [x, y] in body_i's frame; default [1, 0]"});
+    s.push_back({.path = "joint[].radius_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0, .min_exclusive = true, .doc = "chain: roller radius"});
+    s.push_back({.path = "joint[].wrap", .type = Type::String, .default_text = "ccw", .allowed = {"ccw", "cw"},
+                 .doc = "chain: going from point_i along the chain onto the roller, the chain turns counter-clockwise (ccw) or clockwise (cw)"});
+    s.push_back({.path = "joint[].reference_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg,
+                 .doc = "fixed/prismatic: relative angle theta_j - theta_i held; default: from the initial poses"});
+    s.push_back({.path = "joint[].reference_mm", .type = Type::Number, .unit = "mm", .to_si = kMm,
+                 .doc = "chain: constant free length + r * wrap angle; default: from the initial poses"});
+    // springs and forces
+    s.push_back({.path = "spring", .type = Type::TableArray, .doc = "linear spring-dampers between two body points"});
+    s.push_back({.path = "spring[].name", .type = Type::String, .doc = "name", .required = true});
+    s.push_back({.path = "spring[].body_i", .type = Type::String, .doc = "first body", .required = true});
+    s.push_back({.path = "spring[].point_i", .type = Type::String, .default_text = "origin", .doc = "point of body_i"});
+    s.push_back({.path = "spring[].body_j", .type = Type::String, .doc = "second body", .required = true});
+    s.push_back({.path = "spring[].point_j", .type = Type::String, .default_text = "origin", .doc = "point of body_j"});
+    s.push_back({.path = "spring[].stiffness_n_per_m", .type = Type::Number, .unit = "N/m", .default_number = 0, .min = 0, .doc = "stiffness k (tension = k (L - L0) + c L')"});
+    s.push_back({.path = "spring[].damping_ns_per_m", .type = Type::Number, .unit = "N*s/m", .default_number = 0, .min = 0, .doc = "damping c"});
+    s.push_back({.path = "spring[].free_length_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 0, .min = 0, .doc = "free length L0"});
+    s.push_back({.path = "point_force", .type = Type::TableArray, .doc = "constant forces (world frame) at body points"});
+    s.push_back({.path = "point_force[].name", .type = Type::String, .doc = "name", .required = true});
+    s.push_back({.path = "point_force[].body", .type = Type::String, .doc = "body", .required = true});
+    s.push_back({.path = "point_force[].point", .type = Type::String, .default_text = "origin", .doc = "point of the body"});
+    s.push_back({.path = "point_force[].force_n", .type = Type::Array, .unit = "N", .doc = "[Fx, Fy] in the world frame", .required = true});
+    // drives
+    s.push_back({.path = "motion_drive", .type = Type::TableArray, .doc = "prescribed motions s(t) = s_0 + law(t) (constraints)"});
+    s.push_back({.path = "motion_drive[].name", .type = Type::String, .doc = "name", .required = true});
+    add_coordinate_keys(s, "motion_drive[].", true);
+    add_law_keys(s, "motion_drive[].", "law", true);
+    s.push_back({.path = "motion_drive[].initial_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "s_0 of an angle; default: from the initial poses"});
+    s.push_back({.path = "motion_drive[].initial_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "s_0 of a displacement; default: from the initial poses"});
+    s.push_back({.path = "force_drive", .type = Type::TableArray, .doc = "motors: an effort on the relative coordinate"});
+    s.push_back({.path = "force_drive[].name", .type = Type::String, .doc = "name", .required = true});
+    add_coordinate_keys(s, "force_drive[].", true);
+    s.push_back({.path = "force_drive[].law", .type = Type::String, .default_text = "constant", .allowed = {"constant", "dc_motor", "pd_servo"},
+                 .doc = "constant: effort = torque/force; dc_motor: effort = stall (1 - s'/no_load_speed); pd_servo: kp (s_ref - s) + kd (s_ref' - s')"});
+    s.push_back({.path = "force_drive[].torque_nm", .type = Type::Number, .unit = "N*m", .doc = "constant: torque (angle)"});
+    s.push_back({.path = "force_drive[].force_n", .type = Type::Number, .unit = "N", .doc = "constant: force (displacement)"});
+    s.push_back({.path = "force_drive[].stall_torque_nm", .type = Type::Number, .unit = "N*m", .doc = "dc_motor: stall torque (angle)"});
+    s.push_back({.path = "force_drive[].stall_force_n", .type = Type::Number, .unit = "N", .doc = "dc_motor: stall force (displacement)"});
+    s.push_back({.path = "force_drive[].no_load_speed_rpm", .type = Type::Number, .unit = "rpm", .to_si = kRpm, .doc = "dc_motor: no-load speed (angle)"});
+    s.push_back({.path = "force_drive[].no_load_speed_mm_s", .type = Type::Number, .unit = "mm/s", .to_si = kMm, .doc = "dc_motor: no-load speed (displacement)"});
+    s.push_back({.path = "force_drive[].kp_nm_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0, .doc = "pd_servo: stiffness gain (angle)"});
+    s.push_back({.path = "force_drive[].kd_nms_per_rad", .type = Type::Number, .unit = "N*m*s/rad", .min = 0, .doc = "pd_servo: damping gain (angle)"});
+    s.push_back({.path = "force_drive[].kp_n_per_m", .type = Type::Number, .unit = "N/m", .min = 0, .doc = "pd_servo: stiffness gain (displacement)"});
+    s.push_back({.path = "force_drive[].kd_ns_per_m", .type = Type::Number, .unit = "N*s/m", .min = 0, .doc = "pd_servo: damping gain (displacement)"});
+    add_law_keys(s, "force_drive[].", "reference", false);
+    s.push_back({.path = "force_drive[].initial_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "pd_servo: s_0 of an angle; default: from the initial poses"});
+    s.push_back({.path = "force_drive[].initial_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "pd_servo: s_0 of a displacement; default: from the initial poses"});
+    // gravity and simulation
+    s.push_back({.path = "gravity.vector_m_s2", .type = Type::Array, .unit = "m/s^2", .doc = "gravity [gx, gy] in the world frame; default [0, -9.80665]; [0, 0]: none"});
+    s.push_back({.path = "simulation.method", .type = Type::String, .default_text = "idas", .allowed = {"idas", "cvodes", "kinematic"},
+                 .doc = "idas: IDAS on the index-2 GGL form (any DoF); cvodes: CVODES on one minimal coordinate (1 DoF); kinematic: prescribed motion (DoF 0)"});
+    s.push_back({.path = "simulation.duration_s", .type = Type::Number, .unit = "s", .min = 0, .min_exclusive = true, .doc = "end time (the run starts at t = 0)", .required = true});
+    s.push_back({.path = "simulation.output_times", .type = Type::Integer, .default_number = 101, .min = 2, .max = 1000000, .doc = "number of equally spaced output times, both ends included"});
+    s.push_back({.path = "simulation.relative_tolerance", .type = Type::Number, .default_number = 1e-10, .min = 0, .max = 1e-2, .min_exclusive = true, .doc = "integrator relative tolerance"});
+    s.push_back({.path = "simulation.absolute_tolerance", .type = Type::Number, .default_number = 1e-12, .min = 0, .max = 1, .min_exclusive = true, .doc = "integrator absolute tolerance of q (m, rad) and v"});
+    s.push_back({.path = "simulation.max_step_s", .type = Type::Number, .unit = "s", .default_number = 0, .min = 0, .doc = "largest integrator step; 0: no limit"});
+    s.push_back({.path = "simulation.characteristic_length_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 0, .min = 0,
+                 .doc = "length that scales the drift checks; 0: the largest distance of a point or body origin from the first body's origin"});
+    s.push_back({.path = "simulation.slack_is_error", .type = Type::Boolean, .default_number = 1, .doc = "a chain with negative tension stops the run (naming the time)"});
+    add_coordinate_keys(s, "simulation.coordinate.", false);
+    return s;
+  }();
+  return schema;
+}
+
+mech::MultibodyModel read_linkage_model(const CaseFile& c) {
+  const Reader r(c);
+  mech::MultibodyModel m;
+  m.name = mechanism_case_name(c);
+
+  std::set<std::string> body_names;
+  const std::size_t n_bodies = c.count("body");
+  require(n_bodies >= 2, "{}: a linkage needs at least two [[body]] tables (a ground and a moving body), got {}",
+          c.path().string(), n_bodies);
+  for (std::size_t k = 0; k < n_bodies; ++k) {
+    mech::Body b;
+    b.name = r.name_key("body[].name", k, "body", body_names);
+    b.mass_kg = c.number("body[].mass_kg", k);
+    b.inertia_kgm2 = c.number("body[].inertia_kgm2", k);
+    b.com_body = read_vector2(c, "body[].com_mm", k, kMm);
+    const Eigen::Vector3d pose = c.vector3("body[].pose_mm_deg", k);
+    b.pose = {pose.x() * kMm, pose.y() * kMm, pose.z() * kDeg};
+    const Eigen::Vector3d vel = c.vector3("body[].velocity_mm_s_deg_s", k);
+    b.velocity = {vel.x() * kMm, vel.y() * kMm, vel.z() * kDeg};
+    b.fixed = c.boolean("body[].fixed", k);
+    if (!b.fixed)
+      require(b.mass_kg > 0 && b.inertia_kgm2 > 0, "{}: moving body '{}' needs mass_kg > 0 and inertia_kgm2 > 0 (got {:g} kg, {:g} kg*m^2)",
+              c.where("body[].name", k), b.name, b.mass_kg, b.inertia_kgm2);
+    m.bodies.push_back(b);
+  }
+  require(std::any_of(m.bodies.begin(), m.bodies.end(), [](const mech::Body& b) { return b.fixed; }),
+          "{}: no [[body]] has fixed = true (the ground)", c.path().string());
+
+  for (std::size_t k = 0; k < c.count("point"); ++k) {
+    mech::Body& b = m.bodies[r.body(m.bodies, "point[].body", k)];
+    const std::string name = c.text_value("point[].name", k);
+    require(valid_name(name) && name != "origin", "{} = \"{}\": a point name may hold letters, digits, '_', '-' and '.' and is not 'origin'",
+            c.where("point[].name", k), name);
+    require(!b.points.contains(name), "{} = \"{}\": body '{}' already has a point of that name", c.where("point[].name", k), name, b.name);
+    b.points[name] = read_vector2(c, "point[].at_mm", k, kMm);
+  }
+  for (std::size_t k = 0; k < c.count("point_mass"); ++k) {
+    mech::Body& b = m.bodies[r.body(m.bodies, "point_mass[].body", k)];
+    Eigen::Vector2d at = read_vector2(c, "point_mass[].at_mm", k, kMm);
+    if (c.has("point_mass[].at_point", k)) {
+      require(!c.has("point_mass[].at_mm", k), "{}: give at_mm or at_point, not both", c.where("point_mass[].at_point", k));
+      const std::string point = r.point(b, "point_mass[].at_point", k);
+      at = point == "origin" ? Eigen::Vector2d::Zero() : b.points.at(point);
+    }
+    b.point_masses.push_back({c.text_value("point_mass[].name", k), c.number("point_mass[].mass_kg", k), at});
+  }
+
+  std::set<std::string> constraint_names;  // joints and motion drives share one namespace
+  for (std::size_t k = 0; k < c.count("joint"); ++k) {
+    mech::Joint j;
+    j.name = r.name_key("joint[].name", k, "joint or motion drive", constraint_names);
+    const std::string type = c.text_value("joint[].type", k);
+    j.type = type == "revolute" ? mech::JointType::Revolute
+             : type == "prismatic" ? mech::JointType::Prismatic
+             : type == "fixed" ? mech::JointType::Fixed
+                               : mech::JointType::Chain;
+    const std::size_t bi = r.body(m.bodies, "joint[].body_i", k), bj = r.body(m.bodies, "joint[].body_j", k);
+    require(bi != bj, "{} = \"{}\": a joint connects two different bodies", c.where("joint[].body_j", k), m.bodies[bj].name);
+    j.body_i = m.bodies[bi].name;
+    j.body_j = m.bodies[bj].name;
+    j.point_i = r.point(m.bodies[bi], "joint[].point_i", k);
+    j.point_j = r.point(m.bodies[bj], "joint[].point_j", k);
+    auto only_for = [&](const char* key, bool ok, const char* types) {
+      require(ok || !c.has(std::string("joint[].") + key, k), "{}: only for {} joints (this one is {})",
+              c.where(std::string("joint[].") + key, k), types, type);
+    };
+    only_for("axis", j.type == mech::JointType::Prismatic, "prismatic");
+    only_for("radius_mm", j.type == mech::JointType::Chain, "chain");
+    only_for("wrap", j.type == mech::JointType::Chain, "chain");
+    only_for("reference_mm", j.type == mech::JointType::Chain, "chain");
+    only_for("reference_deg", j.type == mech::JointType::Fixed || j.type == mech::JointType::Prismatic, "fixed and prismatic");
+    j.axis_i = read_vector2(c, "joint[].axis", k, 1.0, {1.0, 0.0});
+    require(j.axis_i.norm() > 0, "{}: the axis must not be zero", c.where("joint[].axis", k));
+    if (j.type == mech::JointType::Chain) {
+      require(c.has("joint[].radius_mm", k), "{}: a chain joint needs radius_mm (the roller radius)", c.where("joint[].type", k));
+      j.radius_m = c.number("joint[].radius_mm", k);
+      j.wrap_ccw = c.text_value("joint[].wrap", k) == "ccw";
+      if (c.has("joint[].reference_mm", k)) j.reference = c.number("joint[].reference_mm", k);
+    }
+    if (c.has("joint[].reference_deg", k)) j.reference = c.number("joint[].reference_deg", k);
+    m.joints.push_back(j);
+  }
+
+  for (std::size_t k = 0; k < c.count("spring"); ++k) {
+    mech::Spring sp;
+    sp.name = c.text_value("spring[].name", k);
+    const std::size_t bi = r.body(m.bodies, "spring[].body_i", k), bj = r.body(m.bodies, "spring[].body_j", k);
+    sp.body_i = m.bodies[bi].name;
+    sp.body_j = m.bodies[bj].name;
+    sp.point_i = r.point(m.bodies[bi], "spring[].point_i", k);
+    sp.point_j = r.point(m.bodies[bj], "spring[].point_j", k);
+    sp.stiffness_N_per_m = c.number("spring[].stiffness_n_per_m", k);
+    sp.damping_Ns_per_m = c.number("spring[].damping_ns_per_m", k);
+    sp.free_length_m = c.number("spring[].free_length_mm", k);
+    m.springs.push_back(sp);
+  }
+  for (std::size_t k = 0; k < c.count("point_force"); ++k) {
+    mech::PointForce pf;
+    pf.name = c.text_value("point_force[].name", k);
+    const std::size_t b = r.body(m.bodies, "point_force[].body", k);
+    pf.body = m.bodies[b].name;
+    pf.point = r.point(m.bodies[b], "point_force[].point", k);
+    pf.force_world = read_vector2(c, "point_force[].force_n", k, 1.0);
+    m.point_forces.push_back(pf);
+  }
+
+  std::set<std::string> drive_names;
+  for (std::size_t k = 0; k < c.count("motion_drive"); ++k) {
+    const std::string p = "motion_drive[].";
+    mech::MotionDrive d;
+    d.name = r.name_key(p + "name", k, "joint or motion drive", constraint_names);
+    drive_names.insert(d.name);
+    d.coordinate = r.coordinate(m.bodies, p, k);
+    const bool angle = d.coordinate.type == mech::CoordinateType::Angle;
+    d.law = r.law(p, "law", angle, k);
+    d.initial = r.coordinate_number(p, "initial", "_deg", "_mm", angle, k);
+    m.motion_drives.push_back(d);
+  }
+  for (std::size_t k = 0; k < c.count("force_drive"); ++k) {
+    const std::string p = "force_drive[].";
+    mech::ForceDrive d;
+    d.name = r.name_key(p + "name", k, "drive", drive_names);
+    d.coordinate = r.coordinate(m.bodies, p, k);
+    const bool angle = d.coordinate.type == mech::CoordinateType::Angle;
+    const std::string law = c.text_value(p + "law", k);
+    const std::string at = c.where(p + "law", k);
+    auto needed = [&](const std::string& angle_key, const std::string& displacement_key) {
+      const std::string mine = p + (angle ? angle_key : displacement_key), other = p + (angle ? displacement_key : angle_key);
+      require(!c.has(other, k), "{}: this drive's coordinate is {}: use '{}'", c.where(other, k),
+              angle ? "an angle" : "a displacement", angle ? angle_key : displacement_key);
+      require(c.has(mine, k), "{} = \"{}\": needs '{}'", at, law, angle ? angle_key : displacement_key);
+      return c.number(mine, k);
+    };
+    if (law == "constant") {
+      d.law_type = mech::ForceLaw::Constant;
+      d.value = needed("torque_nm", "force_n");
+    } else if (law == "dc_motor") {
+      d.law_type = mech::ForceLaw::DcMotor;
+      d.stall = needed("stall_torque_nm", "stall_force_n");
+      d.no_load_speed = needed("no_load_speed_rpm", "no_load_speed_mm_s");
+      require(d.no_load_speed != 0.0, "{}: the no-load speed must not be zero", at);
+    } else {
+      d.law_type = mech::ForceLaw::PdServo;
+      d.kp = needed("kp_nm_per_rad", "kp_n_per_m");
+      d.kd = needed("kd_nms_per_rad", "kd_ns_per_m");
+      require(c.has(p + "reference", k), "{} = \"pd_servo\": needs 'reference' (a motion law) and its parameters", at);
+      d.law = r.law(p, "reference", angle, k);
+      d.initial = r.coordinate_number(p, "initial", "_deg", "_mm", angle, k);
+    }
+    m.force_drives.push_back(d);
+  }
+
+  if (c.has("gravity.vector_m_s2")) m.gravity = read_vector2(c, "gravity.vector_m_s2", 0, 1.0);
+
+  double length = c.number("simulation.characteristic_length_mm");
+  if (length == 0.0) {
+    const Eigen::Vector2d o = m.bodies.front().pose.head<2>();
+    for (const auto& b : m.bodies) {
+      length = std::max(length, (b.pose.head<2>() - o).norm());
+      for (const auto& [n, p] : b.points) length = std::max(length, p.norm());
+    }
+    if (length == 0.0) length = 1.0;
+  }
+  m.characteristic_length_m = length;
+  return m;
+}
+
+namespace {
+
+std::string effort_unit(const mech::MultibodyModel& m, std::size_t drive) {
+  const std::size_t n_motion = m.motion_drives.size();
+  const auto& rc = drive < n_motion ? m.motion_drives[drive].coordinate : m.force_drives[drive - n_motion].coordinate;
+  return rc.type == mech::CoordinateType::Angle ? "N*m" : "N";
+}
+
+bool is_angle(const mech::MultibodyModel& m, std::size_t drive) { return effort_unit(m, drive) == "N*m"; }
+
+void write_histories(post::ResultsWriter& w, const mech::MultibodyModel& m, const mech::Results& res,
+                     const std::vector<double>& times) {
+  const std::size_t T = res.frames.size();
+  w.set_mechanism_time(times);
+  const std::vector<std::string> xy = {"x", "y"};
+  auto column = [&](auto&& get, int cols) {
+    post::FieldMatrix out(T, cols);
+    for (std::size_t k = 0; k < T; ++k) get(res.frames[k], out.row(Eigen::Index(k)));
+    return out;
+  };
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const std::string p = "body." + m.bodies[b].name + ".";
+    w.write_history(p + "position", "m", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q.head<2>().transpose(); }, 2), xy);
+    w.write_history(p + "angle", "rad", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q.z(); }, 1));
+    w.write_history(p + "velocity", "m/s", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q_dot.head<2>().transpose(); }, 2), xy);
+    w.write_history(p + "angular_velocity", "rad/s", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q_dot.z(); }, 1));
+    w.write_history(p + "acceleration", "m/s^2", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q_ddot.head<2>().transpose(); }, 2), xy);
+    w.write_history(p + "angular_acceleration", "rad/s^2", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q_ddot.z(); }, 1));
+    w.write_history(p + "com_position", "m", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].com.transpose(); }, 2), xy);
+    w.write_history(p + "com_acceleration", "m/s^2", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].com_acceleration.transpose(); }, 2), xy);
+  }
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    for (int side = 0; side < 2; ++side) {
+      const std::string body = side == 0 ? m.joints[j].body_i : m.joints[j].body_j;
+      const std::string p = "joint." + m.joints[j].name + ".on_" + body + ".";
+      auto on = [side, j](const mech::Frame& f) -> const mech::Reaction& { return side == 0 ? f.joints[j].on_i : f.joints[j].on_j; };
+      w.write_history(p + "force_world", "N", column([&](const mech::Frame& f, auto row) { row = on(f).force_world.transpose(); }, 2), xy);
+      w.write_history(p + "force_body", "N", column([&](const mech::Frame& f, auto row) { row = on(f).force_body.transpose(); }, 2), xy);
+      w.write_history(p + "moment", "N*m", column([&](const mech::Frame& f, auto row) { row(0) = on(f).moment_Nm; }, 1));
+    }
+  }
+  const std::size_t n_drives = m.motion_drives.size() + m.force_drives.size();
+  for (std::size_t d = 0; d < n_drives; ++d) {
+    const std::string p = "drive." + res.frames.front().drives[d].name + ".";
+    const bool angle = is_angle(m, d);
+    w.write_history(p + "s", angle ? "rad" : "m", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].s; }, 1));
+    w.write_history(p + "s_dot", angle ? "rad/s" : "m/s", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].s_dot; }, 1));
+    w.write_history(p + "s_ddot", angle ? "rad/s^2" : "m/s^2", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].s_ddot; }, 1));
+    w.write_history(p + "effort", effort_unit(m, d), column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].effort; }, 1));
+    w.write_history(p + "power", "W", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].power_W; }, 1));
+  }
+  for (std::size_t ch = 0; ch < res.frames.front().chains.size(); ++ch) {
+    const std::string p = "chain." + res.frames.front().chains[ch].name + ".";
+    w.write_history(p + "tension", "N", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].tension_N; }, 1));
+    w.write_history(p + "free_length", "m", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].free_length_m; }, 1));
+    w.write_history(p + "wrap_angle", "rad", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].wrap_angle_rad; }, 1));
+  }
+  w.write_history("energy.kinetic", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.kinetic_energy_J; }, 1));
+  w.write_history("energy.potential", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.potential_energy_J; }, 1));
+  w.write_history("energy.work_drives", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.work_drives_J; }, 1));
+  w.write_history("energy.work_other", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.work_other_J; }, 1));
+  w.write_history("check.drift_position", "m", column([&](const mech::Frame& f, auto row) { row(0) = f.drift_position_m; }, 1));
+  w.write_history("check.equilibrium_residual", "1", column([&](const mech::Frame& f, auto row) { row(0) = f.equilibrium_residual; }, 1));
+}
+
+}  // namespace
+
+LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
+  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
+  Stopwatch total;
+  LinkageRun run;
+  run.model = read_linkage_model(c);
+  const mech::MultibodyModel& m = run.model;
+  const std::string name = mechanism_case_name(c);
+  log.info("kinetofem: case '{}' ({}), linkage: {} bodies, {} joints, {} motion drives, {} force drives, {} springs",
+           name, c.path().string(), m.bodies.size(), m.joints.size(), m.motion_drives.size(), m.force_drives.size(),
+           m.springs.size());
+  std::unique_ptr<mech::MultibodySystem> system;
+  try {
+    system = std::make_unique<mech::MultibodySystem>(m);
+  } catch (const Error& e) {
+    fail("{}: the linkage is not valid: {}", c.path().string(), e.what());
+  }
+  const std::string method = c.text_value("simulation.method");
+  const double duration = c.number("simulation.duration_s");
+  const long n_times = c.integer("simulation.output_times");
+  std::vector<double> times;
+  for (long k = 0; k < n_times; ++k) times.push_back(duration * double(k) / double(n_times - 1));
+  const Eigen::VectorXd q0 = system->initial_coordinates();
+  int dof = 0;
+  try {
+    dof = mech::degrees_of_freedom(*system, mech::assemble(*system, q0, 0.0), 0.0);
+  } catch (const Error& e) {
+    fail("{}: the linkage cannot be run: {}", c.path().string(), e.what());
+  }
+  log.info("  {} coordinates, {} constraint equations, {} degree(s) of freedom; {} over {:g} s, {} output times",
+           system->n_coordinates(), system->n_constraints(), dof, method, duration, n_times);
+
+  mech::DynamicsOptions dyn;
+  dyn.relative_tolerance = c.number("simulation.relative_tolerance");
+  dyn.absolute_tolerance = c.number("simulation.absolute_tolerance");
+  dyn.max_step_s = c.number("simulation.max_step_s");
+  dyn.slack_is_error = c.boolean("simulation.slack_is_error");
+  Stopwatch clock;
+  try {
+    if (method == "kinematic") {
+      require(dof == 0, "simulation.method = \"kinematic\" needs a fully driven linkage (0 DoF); this one has {} DoF: "
+              "add motion drives or use \"idas\"", dof);
+      mech::KinematicOptions ko;
+      ko.slack_is_error = dyn.slack_is_error;
+      run.results = mech::run_kinematics(*system, times, ko);
+    } else if (method == "cvodes") {
+      require(dof == 1, "simulation.method = \"cvodes\" needs a linkage with 1 DoF; this one has {} DoF", dof);
+      mech::RelativeCoordinate rc;
+      if (c.has("simulation.coordinate.body_i")) {
+        rc = Reader(c).coordinate(m.bodies, "simulation.coordinate.", 0);
+      } else {
+        require(!m.force_drives.empty(), "simulation.method = \"cvodes\": give [simulation.coordinate] (no force drive to take it from)");
+        rc = m.force_drives.front().coordinate;
+      }
+      run.results = mech::simulate_minimal(*system, rc, times, dyn);
+    } else {
+      run.results = mech::simulate_ggl(*system, times, dyn);
+    }
+  } catch (const Error& e) {
+    fail("{}: the linkage cannot be run: {}", c.path().string(), e.what());
+  }
+  log.info("  {}: {:.3f} s", method, clock.seconds());
+  const mech::Results& res = run.results;
+
+  run.results_file = mechanism_results_path(c, options, name);
+  post::ResultsWriter writer(run.results_file, mechanism_provenance(c, options));
+  write_histories(writer, m, res, times);
+  writer.commit();
+
+  // ---- summary ----------------------------------------------------------------
+  std::printf("\nSummary of '%s' (linkage, %s, %zu output times over %.4g s, %d DoF)\n", name.c_str(), method.c_str(),
+              res.frames.size(), duration, dof);
+  const std::size_t n_drives = res.frames.front().drives.size();
+  for (std::size_t d = 0; d < n_drives; ++d) {
+    double lo = 1e300, hi = -1e300, t_lo = 0, t_hi = 0, p_max = 0;
+    for (const auto& f : res.frames) {
+      const double e = f.drives[d].effort;
+      if (e < lo) lo = e, t_lo = f.t;
+      if (e > hi) hi = e, t_hi = f.t;
+      p_max = std::max(p_max, std::abs(f.drives[d].power_W));
+    }
+    run.max_abs_drive_effort = std::max({run.max_abs_drive_effort, std::abs(lo), std::abs(hi)});
+    const std::string unit = effort_unit(m, d);
+    std::printf("  drive %-16s %s: effort %.4g %s (t = %.4g s) .. %.4g %s (t = %.4g s); peak |power| %.4g W\n",
+                res.frames.front().drives[d].name.c_str(), d < m.motion_drives.size() ? "(motion)" : "(force) ", lo,
+                unit.c_str(), t_lo, hi, unit.c_str(), t_hi, p_max);
+  }
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    double peak = 0, t_peak = 0, moment = 0;
+    for (const auto& f : res.frames) {
+      if (f.joints[j].on_j.force_world.norm() > peak) peak = f.joints[j].on_j.force_world.norm(), t_peak = f.t;
+      moment = std::max(moment, std::abs(f.joints[j].on_j.moment_Nm));
+    }
+    std::printf("  joint %-16s max |reaction| %.4g N (t = %.4g s)%s\n", m.joints[j].name.c_str(), peak, t_peak,
+                moment > 0 && m.joints[j].type != mech::JointType::Revolute
+                    ? fmt::format("; max |moment| on {} {:.4g} N m", m.joints[j].body_j, moment).c_str()
+                    : "");
+  }
+  const std::size_t n_chains = res.frames.front().chains.size();
+  for (std::size_t ch = 0; ch < n_chains; ++ch) {
+    double lo = 1e300, hi = -1e300, t_lo = 0;
+    for (const auto& f : res.frames) {
+      if (f.chains[ch].tension_N < lo) lo = f.chains[ch].tension_N, t_lo = f.t;
+      hi = std::max(hi, f.chains[ch].tension_N);
+    }
+    if (ch == 0) run.min_chain_tension_n = lo, run.max_chain_tension_n = hi;
+    run.min_chain_tension_n = std::min(run.min_chain_tension_n, lo);
+    run.max_chain_tension_n = std::max(run.max_chain_tension_n, hi);
+    std::printf("  chain %-16s tension %.4g N (min, t = %.4g s) .. %.4g N%s\n", res.frames.front().chains[ch].name.c_str(),
+                lo, t_lo, hi, lo <= 0 ? "  SLACK: the chain cannot push" : "");
+  }
+  std::printf("%s\n", res.format_checks().c_str());
+  std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());
+  return run;
+}
+
+}  // namespace kinetofem::app

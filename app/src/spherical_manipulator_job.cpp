@@ -1,0 +1,158 @@
+// The "spherical_manipulator" case type (SPEC §5): a variant A-E of the
+// spherical-coordinate 3-DoF manipulator with a payload, sized by the
+// source's rules, moving its gripper point M along a straight segment with
+// the trapezoidal speed law; inverse kinematics, kinetostatic inverse dynamics
+// (drive efforts, pair reactions, power) as histories, and the CVODES
+// forward-dynamics cross-check. Model: mechanisms/spherical_manipulator.hpp.
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/mechanisms/spherical_manipulator.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
+
+namespace kinetofem::app {
+
+namespace {
+using Type = KeySpec::Type;
+constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0;
+}  // namespace
+
+const std::vector<KeySpec>& spherical_manipulator_schema() {
+  static const std::vector<KeySpec> schema = [] {
+    const mech::SphericalSizingOptions sizing;
+    std::vector<KeySpec> s = mechanism_case_keys("spherical_manipulator");
+    s.insert(s.end(), {
+      {.path = "manipulator.variant", .type = Type::String, .default_text = "A", .allowed = {"A", "B", "C", "D", "E"}, .doc = "row of the SPEC §5 data table"},
+      {.path = "manipulator.payload_kg", .type = Type::Number, .unit = "kg", .min = 0, .doc = "payload at M (not in the SPEC table: a case input)", .required = true},
+      {.path = "manipulator.sleeve_ratio", .type = Type::Number, .default_number = sizing.sleeve_ratio, .min = 0.2, .max = 0.5, .doc = "sleeve length l2 / arm length l1"},
+      {.path = "manipulator.sleeve_diameter_ratio", .type = Type::Number, .default_number = sizing.sleeve_diameter_ratio, .min = 0.2, .max = 0.4, .doc = "sleeve diameter d2 / l2"},
+      {.path = "manipulator.base_diameter_ratio", .type = Type::Number, .default_number = sizing.base_diameter_ratio, .min = 1.5, .max = 2.0, .doc = "base diameter d0 / height of A"},
+      {.path = "manipulator.margin_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = sizing.margin_m / kMm, .min = 0, .doc = "l1 = r_Mmax + 0.5 l2 + margin"},
+      {.path = "motion.start_mm", .type = Type::Vector3, .unit = "mm", .to_si = kMm, .doc = "start a of M's straight segment [x, y, z] (world: origin on the floor on the column axis, z up)", .required = true},
+      {.path = "motion.end_mm", .type = Type::Vector3, .unit = "mm", .to_si = kMm, .doc = "end b of the segment", .required = true},
+      {.path = "motion.speed_m_s", .type = Type::Number, .unit = "m/s", .default_number = 0, .min = 0, .doc = "steady speed V of M; 0: the variant's"},
+      {.path = "motion.accel_fraction", .type = Type::Number, .default_number = 0, .min = 0, .max = 1, .doc = "kP; 0: the variant's"},
+      {.path = "motion.decel_fraction", .type = Type::Number, .default_number = 0, .min = 0, .max = 1, .doc = "kT; 0: the variant's"},
+      {.path = "motion.intervals", .type = Type::Integer, .default_number = 100, .min = 2, .max = 1000000, .doc = "output intervals over the motion (the law's breakpoints are added)"},
+      {.path = "check.forward_dynamics", .type = Type::Boolean, .default_number = 1, .doc = "integrate the efforts forward with CVODES and compare M's path with the plan"},
+    });
+    return s;
+  }();
+  return schema;
+}
+
+MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptions& options) {
+  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
+  const std::string name = mechanism_case_name(c);
+  const mech::SphericalVariant& v = mech::spherical_variant(c.text_value("manipulator.variant")[0]);
+  log.info("kinetofem: case '{}' ({}), spherical manipulator variant {} (SPEC §5)", name, c.path().string(), v.name);
+  mech::SphericalSizingOptions sizing;
+  sizing.sleeve_ratio = c.number("manipulator.sleeve_ratio");
+  sizing.sleeve_diameter_ratio = c.number("manipulator.sleeve_diameter_ratio");
+  sizing.base_diameter_ratio = c.number("manipulator.base_diameter_ratio");
+  sizing.margin_m = c.number("manipulator.margin_mm");
+  const mech::SphericalDesign design = mech::size_spherical_manipulator(v, c.number("manipulator.payload_kg"), sizing);
+  const double speed = c.number("motion.speed_m_s") > 0 ? c.number("motion.speed_m_s") : v.speed_mps;
+  const double kp = c.number("motion.accel_fraction") > 0 ? c.number("motion.accel_fraction") : v.k_accel;
+  const double kt = c.number("motion.decel_fraction") > 0 ? c.number("motion.decel_fraction") : v.k_decel;
+  require(kp + kt <= 1.0, "{}: kP + kT = {:g} must not exceed 1", c.where("motion.decel_fraction"), kp + kt);
+  const Eigen::Vector3d a = c.vector3("motion.start_mm"), b = c.vector3("motion.end_mm");
+  std::unique_ptr<mech::StraightLineMotion> motion;
+  mech::SphericalRun run;
+  try {
+    motion = std::make_unique<mech::StraightLineMotion>(a, b, speed, kp, kt);
+    run = mech::analyse_straight_line(design, *motion, int(c.integer("motion.intervals")));
+  } catch (const Error& e) {
+    fail("{}: [motion]: {}", c.path().string(), e.what());
+  }
+  // analyse_straight_line adds the law's breakpoints: keep strictly increasing times only.
+  std::vector<const mech::SphericalDynamics*> kept;
+  for (const auto& s : run.samples)
+    if (kept.empty() || s.t > kept.back()->t + 1e-12) kept.push_back(&s);
+  const std::size_t T = kept.size();
+  std::vector<double> times(T);
+  post::FieldMatrix m_pos(T, 3), m_vel(T, 3), m_acc(T, 3), q(T, 3), qd(T, 3), qdd(T, 3), efforts(T, 3), power(T, 4);
+  post::FieldMatrix f32(T, 3), m32(T, 3), f21(T, 3), m21(T, 3), f10(T, 3), m10(T, 3);
+  for (std::size_t k = 0; k < T; ++k) {
+    const mech::SphericalDynamics& d = *kept[k];
+    times[k] = d.t;
+    const auto p = motion->at(d.t);
+    m_pos.row(k) = p.m.transpose();
+    m_vel.row(k) = p.m_dot.transpose();
+    m_acc.row(k) = p.m_ddot.transpose();
+    q.row(k) = d.joints.q.transpose();
+    qd.row(k) = d.joints.qd.transpose();
+    qdd.row(k) = d.joints.qdd.transpose();
+    efforts.row(k) << d.pair10.drive, d.pair21.drive, d.pair32.drive;
+    power.row(k) << d.drive_power_W.transpose(), d.total_power_W;
+    f32.row(k) = d.pair32.reaction_force.transpose();
+    m32.row(k) = d.pair32.reaction_moment.transpose();
+    f21.row(k) = d.pair21.reaction_force.transpose();
+    m21.row(k) = d.pair21.reaction_moment.transpose();
+    f10.row(k) = d.pair10.reaction_force.transpose();
+    m10.row(k) = d.pair10.reaction_moment.transpose();
+  }
+  double forward_deviation = -1.0;
+  long forward_steps = 0;
+  if (c.boolean("check.forward_dynamics")) {
+    try {
+      const mech::SphericalForwardResult fwd = mech::spherical_forward_dynamics(design, *motion, times);
+      forward_deviation = fwd.max_path_deviation_m;
+      forward_steps = fwd.steps;
+    } catch (const Error& e) {
+      fail("{}: forward-dynamics cross-check: {}", c.path().string(), e.what());
+    }
+  }
+
+  MechanismCaseSummary summary;
+  summary.results_file = mechanism_results_path(c, options, name);
+  post::ResultsWriter w(summary.results_file, mechanism_provenance(c, options));
+  w.set_mechanism_time(times);
+  const std::vector<std::string> xyz = {"x", "y", "z"}, joints = {"phi10", "phi21", "l_BM"};
+  w.write_history("M.position", "m", m_pos, xyz);
+  w.write_history("M.velocity", "m/s", m_vel, xyz);
+  w.write_history("M.acceleration", "m/s^2", m_acc, xyz);
+  w.write_history("joints.q", "rad, rad, m", q, joints);
+  w.write_history("joints.q_dot", "rad/s, rad/s, m/s", qd, joints);
+  w.write_history("joints.q_ddot", "rad/s^2, rad/s^2, m/s^2", qdd, joints);
+  w.write_history("drive.efforts", "N*m, N*m, N", efforts, {"M10d", "M21d", "F32d"});
+  w.write_history("drive.power", "W", power, {"M10d", "M21d", "F32d", "total"});
+  w.write_history("pair32.reaction_force", "N", f32, xyz);
+  w.write_history("pair32.reaction_moment", "N*m", m32, xyz);
+  w.write_history("pair21.reaction_force", "N", f21, xyz);
+  w.write_history("pair21.reaction_moment", "N*m", m21, xyz);
+  w.write_history("pair10.reaction_force", "N", f10, xyz);
+  w.write_history("pair10.reaction_moment", "N*m", m10, xyz);
+  w.commit();
+
+  const double tc = motion->length() / (speed * (1 - 0.5 * kp - 0.5 * kt));
+  summary.values = {{"duration_s", motion->duration()}, {"peak_M10d_nm", run.peak_drive(0)}, {"peak_M21d_nm", run.peak_drive(1)},
+                    {"peak_F32d_n", run.peak_drive(2)}, {"peak_power_w", run.peak_power_W.sum()},
+                    {"forward_deviation_m", forward_deviation}, {"arm_length_m", design.arm_length_m}};
+  std::printf("\nSummary of '%s' (spherical manipulator, SPEC §5, variant %c, payload %.3g kg)\n", name.c_str(), v.name,
+              design.payload_kg);
+  std::printf("  SPEC §5 table: r_M %.2f/%.2f m, tilt +-%.0f deg, B/A %.2f/%.2f m, base +-%.0f deg, m1/m2/m3 %.0f/%.0f/%.0f kg, "
+              "V %.2f m/s, kP/kT %.2f/%.2f\n",
+              v.r_max_m, v.r_min_m, v.tilt_max_rad / kDeg, v.height_b_m, v.height_a_m, v.base_rotation_max_rad / kDeg, v.m1_kg,
+              v.m2_kg, v.m3_kg, v.speed_mps, v.k_accel, v.k_decel);
+  std::printf("  sizing: arm l1 = %.4f m (= r_Mmax + 0.5 l2 + %.3f), sleeve l2 = %.4f m, d2 = %.4f m, base d0 = %.4f m\n",
+              design.arm_length_m, sizing.margin_m, design.sleeve_length_m, design.sleeve_diameter_m, design.base_diameter_m);
+  std::printf("  segment a = (%.3f, %.3f, %.3f) -> b = (%.3f, %.3f, %.3f) m, l_ab = %.4f m; V = %.3g m/s, kP/kT = %.2f/%.2f\n",
+              a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), motion->length(), speed, kp, kt);
+  std::printf("  T_c = l_ab / (V (1 - kP/2 - kT/2)) = %.5f s (SPEC §5); law duration %.5f s; %zu output times\n", tc,
+              motion->duration(), T);
+  std::printf("  peak drive efforts: M10d %.3f N m, M21d %.3f N m, F32d %.3f N; peak power %.2f / %.2f / %.2f W\n",
+              run.peak_drive(0), run.peak_drive(1), run.peak_drive(2), run.peak_power_W(0), run.peak_power_W(1),
+              run.peak_power_W(2));
+  if (forward_deviation >= 0)
+    std::printf("  forward dynamics (CVODES, efforts fed back, %ld steps): max |M_simulated - M_planned| = %.3g m\n",
+                forward_steps, forward_deviation);
+  std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());
+  return summary;
+}
+
+}  // namespace kinetofem::app

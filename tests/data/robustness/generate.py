@@ -1,0 +1,234 @@
+# Generates the bad-input catalogue tests/data/robustness/<nn>_<what>/ (case files, hand-written .msh files, expected.txt). Run from anywhere: python3 generate.py
+import os, itertools
+ROOT = os.path.dirname(os.path.abspath(__file__))
+
+FE = """[case]
+name = "r"
+type = "fe_static"
+
+[geometry]
+kind = "lever"
+length_mm = 500.0
+width_mm = 80.0
+thickness_mm = 25.0
+bore_diameter_mm = 40.0
+boss_diameter_mm = 90.0
+boss_length_mm = 50.0
+
+[mesh]
+element_size_mm = 20.0
+order = 1
+
+[material]
+youngs_modulus_mpa = 210000.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+
+[[support]]
+set = "bore_A0"
+fixed = ["x", "y", "z"]
+
+[[force]]
+set = "bore_A"
+total_n = [-2000.0, 0.0, 0.0]
+"""
+
+MAN = """[case]
+name = "r"
+type = "manipulator"
+
+[mechanism]
+type = "lever_chain"
+a_mm = 500.0
+c_mm = 350.0
+h_mm = 100.0
+r_mm = 75.0
+gravity_m_s2 = [0.0, -9.80665, 0.0]
+
+[payload]
+gripper_mass_kg = 20.0
+casting_mass_kg = 15.0
+
+[motion]
+law = "polynomial345"
+stroke_deg = 80.0
+duration_s = 2.0
+output_times = 11
+
+[mesh]
+element_size_mm = 20.0
+order = 1
+
+[static_study]
+enabled = false
+"""
+
+# Cube 0.1 m, 6 Kuhn tets; nodes tag = 1 + (x + 2y + 4z).
+def cube_msh(inverted=False, groups=True, bad_node_ref=False, nan_coord=False, volume=True,
+             truncate=None, dup_names=False):
+    P = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+    P = [(0.1 * x, 0.1 * y, 0.1 * z) for (x, y, z) in P]
+    tets = [(0, 1, 3, 7), (0, 1, 5, 7), (0, 2, 3, 7), (0, 2, 6, 7), (0, 4, 5, 7), (0, 4, 6, 7)]
+    def vol(t):
+        a, b, c, d = [P[i] for i in t]
+        u = [b[k] - a[k] for k in range(3)]; v = [c[k] - a[k] for k in range(3)]; w = [d[k] - a[k] for k in range(3)]
+        return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]))
+    tets = [t if vol(t) > 0 else (t[1], t[0], t[2], t[3]) for t in tets]
+    if inverted:
+        t = tets[2]; tets[2] = (t[1], t[0], t[2], t[3])
+    bottom = [(0, 3, 1), (0, 2, 3)]
+    top = [(4, 5, 7), (4, 7, 6)]
+    L = ["$MeshFormat", "4.1 0 8", "$EndMeshFormat"]
+    if groups:
+        n2 = '"fixed"' if not dup_names else '"loaded"'
+        L += ["$PhysicalNames", "3", f"2 1 {n2}", '2 2 "loaded"', '3 3 "body"', "$EndPhysicalNames"]
+    pt = lambda tag: f"1 {tag}" if groups else "0"
+    L += ["$Entities", "0 0 2 1",
+          f"1 0 0 0 0.1 0.1 0 {pt(1)} 0",
+          f"2 0 0 0.1 0.1 0.1 0.1 {pt(2)} 0",
+          f"1 0 0 0 0.1 0.1 0.1 {pt(3)} 2 1 2",
+          "$EndEntities"]
+    L += ["$Nodes", "2 8 1 8", "2 1 0 4"] + [str(i + 1) for i in range(4)]
+    for i in range(4):
+        x, y, z = P[i]
+        L.append(f"{x:g} {y:g} {z:g}" if not (nan_coord and i == 1) else f"nan {y:g} {z:g}")
+    L += ["2 2 0 4"] + [str(i + 1) for i in range(4, 8)]
+    L += [" ".join(f"{c:g}" for c in P[i]) for i in range(4, 8)]
+    L += ["$EndNodes"]
+    nblocks = 3 if volume else 2
+    nel = 4 + (6 if volume else 0)
+    L += ["$Elements", f"{nblocks} {nel} 1 {nel}", "2 1 2 2"]
+    L += [f"{k + 1} " + " ".join(str(i + 1) for i in f) for k, f in enumerate(bottom)]
+    L += ["2 2 2 2"] + [f"{k + 3} " + " ".join(str(i + 1) for i in f) for k, f in enumerate(top)]
+    if volume:
+        L += ["3 1 4 6"]
+        for k, t in enumerate(tets):
+            nodes = [i + 1 for i in t]
+            if bad_node_ref and k == 3: nodes[3] = 99
+            L.append(f"{k + 5} " + " ".join(map(str, nodes)))
+    L += ["$EndElements"]
+    text = "\n".join(L) + "\n"
+    if truncate: text = text[: text.index(truncate)]
+    return text
+
+CUBE = """[case]
+name = "r"
+type = "fe_static"
+
+[geometry]
+kind = "file"
+file = "cube.msh"
+
+[mesh]
+order = 1
+
+[material]
+youngs_modulus_mpa = 210000.0
+poisson_ratio = 0.3
+
+[[support]]
+set = "fixed"
+fixed = ["x", "y", "z"]
+
+[[force]]
+set = "loaded"
+total_n = [0.0, 0.0, 1000.0]
+"""
+
+def sub(base, old, new):
+    assert old in base, old
+    return base.replace(old, new, 1)
+
+E = {'malformed_toml_unclosed_table': "case.toml:18:10: TOML syntax error: Error while parsing table header: expected ']'", 'malformed_toml_duplicate_key': "case.toml:21:17: TOML syntax error: Error while parsing key-value pair: cannot redefine existing floating-point 'poisson_ratio'", 'malformed_toml_unterminated_string': 'case.toml:28:14: TOML syntax error: Error while parsing string', 'malformed_toml_binary_garbage': 'case.toml:3:1: TOML syntax error: Error while parsing root table', 'empty_case_file': "case.toml: required key 'case.type' is missing", 'unknown_key_typo': 'case.toml:15: unknown key \'mesh.element_sise_mm\' (allowed here: "element_size_mm"', 'unknown_table': "case.toml:18: unknown key 'materials' (allowed here:", 'missing_case_type': "case.toml: required key 'case.type' is missing", 'unknown_case_type': 'case.toml: case.type = "fe_statik" is not a known case type', 'missing_force_total': "case.toml: key 'force[0].total_n' is required", 'missing_mechanism_type': "case.toml: required key 'mechanism.type' is missing", 'mistyped_string_for_number': "case.toml:15: key 'mesh.element_size_mm' must be a number (in mm)", 'mistyped_float_for_integer': "case.toml:16: key 'mesh.order' must be an integer", 'mistyped_table_for_array_of_tables': "case.toml:23: key 'support' must be an array of tables ([[support]])", 'mistyped_vector_two_components': "case.toml:29: key 'force[].total_n' must be an array of 3 numbers", 'mistyped_axis_name': 'case.toml:25: key \'support[].fixed\' holds "w": use only "x", "y", "z"', 'geometry_file_key_missing': 'case.toml: key \'geometry.file\' is required when geometry.kind = "file"', 'zero_length': "case.toml:7: key 'geometry.length_mm' = 0 mm is out of range: must be >0 mm", 'negative_thickness': "case.toml:9: key 'geometry.thickness_mm' = -25 mm is out of range: must be >0 mm", 'negative_density': "case.toml:21: key 'material.density_kg_m3' = -7850 kg/m^3 is out of range: must be >=0 kg/m^3", 'zero_youngs_modulus': "case.toml:19: key 'material.youngs_modulus_mpa' = 0 MPa is out of range: must be >0 MPa", 'poisson_ratio_half': "case.toml:20: key 'material.poisson_ratio' = 0.5 is out of range: must be >=-1 and <=0.4999", 'poisson_ratio_above_half': "case.toml:20: key 'material.poisson_ratio' = 0.7 is out of range: must be >=-1 and <=0.4999", 'negative_element_size': "case.toml:15: key 'mesh.element_size_mm' = -20 mm is out of range: must be >0 mm", 'bore_larger_than_boss': 'case.toml: [geometry]: lever bore_diameter_m = 0.095 must be smaller than width_m = 0.08', 'negative_payload_mass': "case.toml:15: key 'payload.casting_mass_kg' = -15 kg is out of range: must be >=0 kg", 'zero_lever_length_manipulator': "case.toml:7: key 'mechanism.a_mm' = 0 mm is out of range: must be >0 mm", 'zero_duration': "case.toml:20: key 'motion.duration_s' = 0 s is out of range: must be >0 s", 'one_output_time': "case.toml:21: key 'motion.output_times' = 1 is out of range: must be >=2 and <=100000", 'trapezoid_fractions_over_one': 'case.toml: [motion]: trapezoidal law: need kP > 0, kT > 0, kP + kT <= 1, got kP = 0.7, kT = 0.6', 'gravity_out_of_plane': "case.toml:11: key 'mechanism.gravity_m_s2' = [0, -9.80665, 1]: the z component (along the pins) must be 0", 'nan_youngs_modulus': "case.toml:19: key 'material.youngs_modulus_mpa' = nan is not a finite number", 'inf_force': "case.toml:29: key 'force[].total_n' = inf is not a finite number", 'negative_inf_gravity_manipulator': "case.toml:11: key 'mechanism.gravity_m_s2' = -inf is not a finite number", 'nan_stroke': "case.toml:19: key 'motion.stroke_deg' = nan is not a finite number", 'lever_stroke_past_assembly_limit': "case.toml: the motion cannot be run: mechanism 'lever manipulator' cannot be assembled at t = ", 'lever_dead_centre_in_motion': 'a limit of assembly or dead centre lies in between', 'lever_dead_centre_kinetostatic': "case.toml: the motion cannot be run: mechanism 'lever manipulator' cannot be assembled at t = 1.96 s", 'lever_chain_slack_gravity_reversed': "case.toml: the motion cannot be run: mechanism 'lever-chain manipulator': chain 'chain' goes slack at t = 0 s", 'lever_chain_inconsistent_dimensions': 'case.toml: [links]: arm length_m = 0.05 must exceed', 'rigid_body_modes_left': 'no support fixes displacements along y, z', 'no_supports': 'case.toml: no [[support]]: a static model needs supports', 'support_set_not_in_mesh': 'case.toml:24: key \'support[0].set\' = "bore_B": the mesh has no node set of that name (present: bore_A, bore_A0', 'factor_exceeds_memory_limit': 'more than the 0.001 GB allowed', 'msh_missing': 'cube.msh: no such mesh file', 'msh_empty': 'cube.msh: the mesh file is empty', 'msh_not_a_mesh': 'cube.msh: not a Gmsh .msh file (it does not start with $MeshFormat)', 'msh_truncated': 'cube.msh: the mesh file is truncated', 'msh_corrupt_node_line': 'cube.msh: gmsh::open failed: Could not read entities', 'msh_inverted_tet': 'cube.msh: element 2 (TET4) is inverted or degenerate', 'msh_without_physical_groups': 'case.toml:17: key \'support[0].set\' = "fixed": the mesh has no node set of that name (present: none)', 'msh_element_refers_to_missing_node': 'cube.msh: gmsh::open failed: Unknown node 99 in element 8', 'msh_nan_coordinate': 'cube.msh: mesh node 1 has a non-finite coordinate', 'msh_surface_only': 'cube.msh: the mesh has no volume elements', 'msh_duplicate_group_name': "cube.msh: physical group name 'loaded' is used twice", 'case_file_missing': 'nothere.toml: case file does not exist', 'case_path_is_directory': 'sub: is a directory, expected a case file', 'output_dir_under_regular_file': '@FILE@/out: cannot create the output directory: Not a directory', 'output_dir_in_proc': '/proc/kinetofem-out: cannot create the output directory', 'disk_full_fe_static': "@OUT@/r.h5.tmp': file write failed", 'disk_full_manipulator': "@OUT@/r.h5.tmp': file write failed"}
+cases = []  # (dir, files{name: text}, expected, extra{args, limits})
+def add(name, files, expected="?", **extra):
+    cases.append((name, files, E[name], extra))
+
+# --- TOML syntax
+add("malformed_toml_unclosed_table", {"case.toml": sub(FE, "[material]", "[material")})
+add("malformed_toml_duplicate_key", {"case.toml": sub(FE, "poisson_ratio = 0.3", "poisson_ratio = 0.3\npoisson_ratio = 0.25")})
+add("malformed_toml_unterminated_string", {"case.toml": sub(FE, 'set = "bore_A"', 'set = "bore_A')})
+add("malformed_toml_binary_garbage", {"case.toml": "[case]\ntype = \"fe_static\"\n\x01\x02\xff\xfe = 3\n"})
+add("empty_case_file", {"case.toml": ""})
+# --- keys
+add("unknown_key_typo", {"case.toml": sub(FE, "element_size_mm = 20.0", "element_sise_mm = 20.0")})
+add("unknown_table", {"case.toml": sub(FE, "[material]", "[materials]")})
+add("missing_case_type", {"case.toml": sub(FE, 'type = "fe_static"\n', "")})
+add("unknown_case_type", {"case.toml": sub(FE, 'type = "fe_static"', 'type = "fe_statik"')})
+add("missing_force_total", {"case.toml": sub(FE, "total_n = [-2000.0, 0.0, 0.0]\n", "")})
+add("missing_mechanism_type", {"case.toml": sub(MAN, 'type = "lever_chain"\n', "")})
+add("mistyped_string_for_number", {"case.toml": sub(FE, "element_size_mm = 20.0", 'element_size_mm = "20"')})
+add("mistyped_float_for_integer", {"case.toml": sub(FE, "order = 1", "order = 1.5")})
+add("mistyped_table_for_array_of_tables", {"case.toml": sub(FE, "[[support]]", "[support]")})
+add("mistyped_vector_two_components", {"case.toml": sub(FE, "total_n = [-2000.0, 0.0, 0.0]", "total_n = [-2000.0, 0.0]")})
+add("mistyped_axis_name", {"case.toml": sub(FE, 'fixed = ["x", "y", "z"]', 'fixed = ["x", "y", "w"]')})
+add("geometry_file_key_missing", {"case.toml": sub(FE, 'kind = "lever"', 'kind = "file"')})
+# --- values
+add("zero_length", {"case.toml": sub(FE, "length_mm = 500.0", "length_mm = 0.0")})
+add("negative_thickness", {"case.toml": sub(FE, "thickness_mm = 25.0", "thickness_mm = -25.0")})
+add("negative_density", {"case.toml": sub(FE, "density_kg_m3 = 7850.0", "density_kg_m3 = -7850.0")})
+add("zero_youngs_modulus", {"case.toml": sub(FE, "youngs_modulus_mpa = 210000.0", "youngs_modulus_mpa = 0.0")})
+add("poisson_ratio_half", {"case.toml": sub(FE, "poisson_ratio = 0.3", "poisson_ratio = 0.5")})
+add("poisson_ratio_above_half", {"case.toml": sub(FE, "poisson_ratio = 0.3", "poisson_ratio = 0.7")})
+add("negative_element_size", {"case.toml": sub(FE, "element_size_mm = 20.0", "element_size_mm = -20.0")})
+add("bore_larger_than_boss", {"case.toml": sub(FE, "bore_diameter_mm = 40.0", "bore_diameter_mm = 95.0")})
+add("negative_payload_mass", {"case.toml": sub(MAN, "casting_mass_kg = 15.0", "casting_mass_kg = -15.0")})
+add("zero_lever_length_manipulator", {"case.toml": sub(MAN, "a_mm = 500.0", "a_mm = 0.0")})
+add("zero_duration", {"case.toml": sub(MAN, "duration_s = 2.0", "duration_s = 0.0")})
+add("one_output_time", {"case.toml": sub(MAN, "output_times = 11", "output_times = 1")})
+add("trapezoid_fractions_over_one", {"case.toml": sub(MAN, 'law = "polynomial345"', 'law = "trapezoidal"\naccel_fraction = 0.7\ndecel_fraction = 0.6')})
+add("gravity_out_of_plane", {"case.toml": sub(MAN, "gravity_m_s2 = [0.0, -9.80665, 0.0]", "gravity_m_s2 = [0.0, -9.80665, 1.0]")})
+# --- NaN / Inf
+add("nan_youngs_modulus", {"case.toml": sub(FE, "youngs_modulus_mpa = 210000.0", "youngs_modulus_mpa = nan")})
+add("inf_force", {"case.toml": sub(FE, "total_n = [-2000.0, 0.0, 0.0]", "total_n = [inf, 0.0, 0.0]")})
+add("negative_inf_gravity_manipulator", {"case.toml": sub(MAN, "gravity_m_s2 = [0.0, -9.80665, 0.0]", "gravity_m_s2 = [0.0, -inf, 0.0]")})
+add("nan_stroke", {"case.toml": sub(MAN, "stroke_deg = 80.0", "stroke_deg = nan")})
+# --- mechanisms
+add("lever_stroke_past_assembly_limit", {"case.toml": sub(sub(MAN, 'type = "lever_chain"', 'type = "lever"'), "stroke_deg = 80.0", "stroke_deg = 40.0")})
+add("lever_dead_centre_in_motion", {"case.toml": sub(sub(sub(MAN, 'type = "lever_chain"', 'type = "lever"'), "stroke_deg = 80.0", "stroke_deg = 36.425"), "output_times = 11", "output_times = 101")})
+add("lever_dead_centre_kinetostatic", {"case.toml": sub(sub(sub(MAN, 'type = "lever_chain"', 'type = "lever"'), "stroke_deg = 80.0", "stroke_deg = 36.425"), "output_times = 11", "output_times = 101\n\n[dynamics]\nmethod = \"kinetostatic\"")})
+add("lever_chain_slack_gravity_reversed", {"case.toml": sub(MAN, "gravity_m_s2 = [0.0, -9.80665, 0.0]", "gravity_m_s2 = [0.0, 9.80665, 0.0]")})
+add("lever_chain_inconsistent_dimensions", {"case.toml": sub(MAN, "c_mm = 350.0", "c_mm = 50.0")})
+# --- FE model
+add("rigid_body_modes_left", {"case.toml": sub(FE, 'fixed = ["x", "y", "z"]', 'fixed = ["x"]')})
+add("no_supports", {"case.toml": sub(FE, '[[support]]\nset = "bore_A0"\nfixed = ["x", "y", "z"]\n', "")})
+add("support_set_not_in_mesh", {"case.toml": sub(FE, 'set = "bore_A0"', 'set = "bore_B"')})
+add("factor_exceeds_memory_limit", {"case.toml": FE + "\n[solver]\nmax_factor_gb = 0.001\n"})
+# --- meshes
+add("msh_missing", {"case.toml": CUBE})
+add("msh_empty", {"case.toml": CUBE, "cube.msh": ""})
+add("msh_not_a_mesh", {"case.toml": CUBE, "cube.msh": "solid cube\nfacet normal 0 0 1\nendsolid\n"})
+add("msh_truncated", {"case.toml": CUBE, "cube.msh": cube_msh(truncate="3 1 4 6")})
+add("msh_corrupt_node_line", {"case.toml": CUBE, "cube.msh": cube_msh().replace("0.1 0.1 0.1", "0.1 zz 0.1")})
+add("msh_inverted_tet", {"case.toml": CUBE, "cube.msh": cube_msh(inverted=True)})
+add("msh_without_physical_groups", {"case.toml": CUBE, "cube.msh": cube_msh(groups=False)})
+add("msh_element_refers_to_missing_node", {"case.toml": CUBE, "cube.msh": cube_msh(bad_node_ref=True)})
+add("msh_nan_coordinate", {"case.toml": CUBE, "cube.msh": cube_msh(nan_coord=True)})
+add("msh_surface_only", {"case.toml": CUBE, "cube.msh": cube_msh(volume=False)})
+add("msh_duplicate_group_name", {"case.toml": CUBE, "cube.msh": cube_msh(dup_names=True)})
+# --- files and output
+add("case_file_missing", {}, args=["run", "nothere.toml", "-o", "@OUT@"])
+add("case_path_is_directory", {"sub/.keep": ""}, args=["run", "sub", "-o", "@OUT@"])
+add("output_dir_under_regular_file", {"case.toml": FE}, args=["run", "case.toml", "-o", "@FILE@/out"])
+add("output_dir_in_proc", {"case.toml": FE}, args=["run", "case.toml", "-o", "/proc/kinetofem-out"])
+add("disk_full_fe_static", {"case.toml": FE}, fsize=200000)
+add("disk_full_manipulator", {"case.toml": MAN}, fsize=300000)
+
+VALID = {"valid_cube": {"case.toml": CUBE, "cube.msh": cube_msh()}}
+
+os.makedirs(ROOT, exist_ok=True)
+for k, (name, files, expected, extra) in enumerate(cases, start=1):
+    d = os.path.join(ROOT, f"{k:02d}_{name}")
+    os.makedirs(d, exist_ok=True)
+    for fn, text in files.items():
+        p = os.path.join(d, fn); os.makedirs(os.path.dirname(p), exist_ok=True)
+        with open(p, "w", encoding="utf-8", errors="surrogateescape") as f: f.write(text)
+    open(os.path.join(d, "expected.txt"), "w").write(expected + "\n")
+    if "args" in extra:
+        open(os.path.join(d, "args.txt"), "w").write("\n".join(extra["args"]) + "\n")
+    if "fsize" in extra:
+        open(os.path.join(d, "fsize_limit_bytes.txt"), "w").write(f"{extra['fsize']}\n")
+for name, files in VALID.items():
+    d = os.path.join(ROOT, name); os.makedirs(d, exist_ok=True)
+    for fn, text in files.items(): open(os.path.join(d, fn), "w").write(text)
+print(len(cases), "cases")
