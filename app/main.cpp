@@ -1,6 +1,7 @@
 // kinetofem — command-line entry point. Registers the subcommands (one file
 // each, app/src/command_*.cpp), parses the arguments, and is the one place
 // that catches errors: it prints the one-line message and exits non-zero.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
@@ -12,6 +13,9 @@
 #include "kinetofem/postproc/provenance.hpp"
 
 int main(int argc, char** argv) {
+  // A file-size limit (a full disk, simulated or real) must end in a clear
+  // error from the writer, not in a kill by SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"kinetofem: kinematic, kinetostatic and finite-element analysis of robot "
                "manipulator mechanisms"};
   app.set_version_flag("--version", std::string("kinetofem ") + kinetofem::kVersion + " (" +
@@ -23,6 +27,7 @@ int main(int argc, char** argv) {
   kinetofem::app::add_case_command(app, context);
   kinetofem::app::add_post_command(app, context);
   kinetofem::app::add_batch_command(app, context);
+  kinetofem::app::add_verify_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -14,6 +14,7 @@ PACKAGES=(
   libgmsh-dev gmsh
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libopenmpi-dev openmpi-bin
+  libhypre-dev
   libcairo2-dev
 )
 

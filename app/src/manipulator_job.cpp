@@ -73,6 +73,8 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "links.boss_length_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = lever.boss_length_m / kMm, .min = 0, .min_exclusive = true, .doc = "boss length along the pins"},
       {.path = "mesh.element_size_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 8.0, .min = 0, .min_exclusive = true, .doc = "target element edge length"},
       {.path = "mesh.order", .type = Type::Integer, .default_number = 2, .min = 1, .max = 2, .doc = "element order: 1 (TET4) or 2 (TET10)"},
+      {.path = "mesh.cache", .type = Type::Boolean, .default_number = 1,
+       .doc = "keep meshes in <output dir>/mesh_cache, keyed by a hash of the geometry, dimensions and mesh options, and reuse them"},
       {.path = "material.name", .type = Type::String, .default_text = "steel", .doc = "material name"},
       {.path = "material.youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = kMpa, .default_number = steel.youngs_modulus_pa / kMpa, .min = 0, .min_exclusive = true, .doc = "Young's modulus E"},
       {.path = "material.poisson_ratio", .type = Type::Number, .default_number = steel.poisson_ratio, .min = -1, .max = 0.4999, .doc = "Poisson's ratio (below 0.5)"},
@@ -148,7 +150,11 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   }
   def.gripper_mass_kg = c.number("payload.gripper_mass_kg");
   def.casting_mass_kg = c.number("payload.casting_mass_kg");
-  def.lever_motion = motion_law(c);
+  try {
+    def.lever_motion = motion_law(c);
+  } catch (const Error& e) {
+    fail("{}: [motion]: {}", c.path().string(), e.what());
+  }
 
   fem::IsotropicMaterial material;
   material.name = c.text_value("material.name");
@@ -160,6 +166,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   meshes::MeshOptions mesh_options;
   mesh_options.element_size_m = c.number("mesh.element_size_mm");
   mesh_options.order = int(c.integer("mesh.order"));
+  if (c.boolean("mesh.cache")) mesh_options.cache_dir = options.output_dir / "mesh_cache";
 
   meshes::LeverDimensions lever_dims;
   lever_dims.length_m = g.a_m;
@@ -183,6 +190,29 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     if (!chain) rocker_dims.validate();
   } catch (const Error& e) {
     fail("{}: [links]: {}", c.path().string(), e.what());
+  }
+
+  // The motion must be possible before anything is meshed: a four-bar driven
+  // past its limit of assembly or through a dead centre, or a slack chain,
+  // stops here with the time (the links' inertias only scale the loads, so
+  // nominal ones do for this check).
+  const long n_times = c.integer("motion.output_times");
+  const double duration = c.number("motion.duration_s");
+  std::vector<double> times;
+  for (long k = 0; k < n_times; ++k) times.push_back(duration * double(k) / double(n_times - 1));
+  {
+    mech::ManipulatorDefinition nominal = def;
+    const double a = def.geometry.a_m;
+    nominal.lever = {10.0, {0.0, 0.5 * a}, 10.0 * a * a / 12.0};
+    nominal.arm = {10.0, {-0.5 * def.geometry.c_m, 0.0}, 10.0 * def.geometry.c_m * def.geometry.c_m / 12.0};
+    nominal.rocker = {10.0, {0.0, 0.5 * def.geometry.b0_m}, 10.0 * def.geometry.b0_m * def.geometry.b0_m / 12.0};
+    try {
+      mech::KinematicOptions check;
+      check.slack_is_error = false;  // the chain tension is checked with the real masses below
+      mech::run_kinematics(mech::MultibodySystem(mech::make_manipulator_model(nominal)), times, check);
+    } catch (const Error& e) {
+      fail("{}: the motion cannot be run: {}", c.path().string(), e.what());
+    }
   }
 
   std::vector<Link> links;
@@ -216,10 +246,6 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   const mech::MultibodyModel model = mech::make_manipulator_model(def);
   const mech::MultibodySystem system(model);
 
-  const long n_times = c.integer("motion.output_times");
-  const double duration = c.number("motion.duration_s");
-  std::vector<double> times;
-  for (long k = 0; k < n_times; ++k) times.push_back(duration * double(k) / double(n_times - 1));
   log.info("dynamics: {} over {:.3f} s, {} output times ({})", def.lever_motion->describe(), duration, n_times,
            c.text_value("dynamics.method"));
   clock.restart();

@@ -46,11 +46,19 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
       const Eigen::VectorXd f = F.col(Eigen::Index(k));
       // Reactions of the determinate support: (K u - f) at its six DoFs.
       const Eigen::VectorXd reaction = analysis.reactions_at(u, f, supported);
-      const double load_scale = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
-      const double relative = reaction.cwiseAbs().maxCoeff() / load_scale;
+      // Relative to the total load the link carries (sum of the nodal force
+      // magnitudes): the reactions come out of K u - f, so they carry the
+      // solve's round-off amplified by the condition of K.
+      const double load_scale =
+          std::max(Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(f.data(), 3, nodes)
+                       .colwise()
+                       .norm()
+                       .sum(),
+                   1e-300);
+      const double relative = reaction.norm() / load_scale;
       env.worst_support_reaction = std::max(env.worst_support_reaction, relative);
       if (!(relative <= options.reaction_tolerance))
-        fail("link '{}' at t = {:.6g} s: the 3-2-1 support carries {:.2e} of the largest nodal "
+        fail("link '{}' at t = {:.6g} s: the 3-2-1 support carries {:.2e} of the link's total "
              "load; the loads are not self-equilibrated",
              loads.body(), frames[step].t, relative);
       clock.restart();

@@ -1,6 +1,9 @@
 #include "kinetofem/meshes/mesh_geometry.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
 #include <cctype>
 #include <cmath>
 
@@ -8,6 +11,7 @@
 
 #include "gmsh_model.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/meshes/msh_io.hpp"
 
 namespace kinetofem::meshes {
 
@@ -55,9 +59,72 @@ std::string lower_extension(const std::filesystem::path& file) {
 
 }  // namespace
 
+namespace {
+
+// FNV-1a, 64 bit: a stable content hash (std::hash is not stable across builds).
+std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 1469598103934665603ull) {
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::string cache_key(const std::filesystem::path& file, const MeshOptions& options,
+                      const GeometryParameters& parameters) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream content;
+  content << in.rdbuf();
+  // Everything that changes the mesh: the file's text, the parameters, the
+  // options, and the mesh format of this cache.
+  std::string key = "kinetofem-mesh-cache-v1\n" + content.str();
+  for (const auto& [name, value] : parameters) key += fmt::format("\n{}={:.17g}", name, value);
+  key += fmt::format("\nsize={:.17g} order={} family={} per_circle={} optimize={}",
+                     options.element_size_m, options.order, int(options.family),
+                     options.elements_per_circle, options.optimize);
+  return fmt::format("{}_{:016x}", file.stem().string(), fnv1a(key));
+}
+
+fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
+                                 const GeometryParameters& parameters);
+
+}  // namespace
+
 fem::Mesh mesh_geometry(const std::filesystem::path& file, const MeshOptions& options,
                         const GeometryParameters& parameters) {
   options.validate();
+  if (options.cache_dir.empty() || !std::filesystem::is_regular_file(file))
+    return mesh_geometry_uncached(file, options, parameters);
+  const std::filesystem::path cached =
+      options.cache_dir / (cache_key(file, options, parameters) + ".msh");
+  std::error_code error;
+  if (std::filesystem::is_regular_file(cached, error)) {
+    try {
+      return read_msh(cached);
+    } catch (const Error&) {
+      // A damaged cache entry is not the user's problem: mesh again below.
+    }
+  }
+  fem::Mesh mesh = mesh_geometry_uncached(file, options, parameters);
+  std::filesystem::create_directories(options.cache_dir, error);
+  if (!error) {
+    // Atomic: a half-written cache entry is never found under its name.
+    const std::filesystem::path temporary =
+        options.cache_dir / (cached.stem().string() + ".partial.msh");
+    try {
+      write_msh(mesh, temporary, MshEncoding::Binary);
+      std::filesystem::rename(temporary, cached, error);
+    } catch (const Error&) {
+      std::filesystem::remove(temporary, error);  // the cache is an optimisation only
+    }
+  }
+  return mesh;
+}
+
+namespace {
+
+fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
+                                 const GeometryParameters& parameters) {
   const std::string context = file.string();
   std::error_code error;
   require(std::filesystem::is_regular_file(file, error), "{}: no such geometry file", context);
@@ -105,5 +172,7 @@ fem::Mesh mesh_geometry(const std::filesystem::path& file, const MeshOptions& op
   mesh.validate();
   return mesh;
 }
+
+}  // namespace
 
 }  // namespace kinetofem::meshes

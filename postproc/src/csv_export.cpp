@@ -40,6 +40,7 @@ class CsvFile {
 
 std::string number(double v) {
   if (std::isnan(v)) return "";
+  if (v == 0.0) v = 0.0;  // no "-0" cells
   return fmt::format("{:.9g}", v);
 }
 

@@ -26,10 +26,16 @@ void throw_failure(const char* function, std::string_view object, const std::str
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &message);
   H5Eclear2(H5E_DEFAULT);
   if (message.empty()) message = "no message on the HDF5 error stack";
+  // One-line errors: HDF5's messages may carry newlines (e.g. a failed write).
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
   fail("HDF5 {} failed on '{}' in '{}': {}", function, object, file, message);
 }
 
 H5Io::H5Io(std::string file_path) : file_(std::move(file_path)) {
+  // HDF5 1.10 can crash in its atexit clean-up after a failed write (full
+  // disk); the library's objects are all closed by their owners anyway.
+  H5dont_atexit();
   // Failures are reported by the Error thrown from check(); HDF5's own
   // printing of its error stack to stderr would only repeat it, noisily.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);

@@ -191,12 +191,20 @@ std::string case_name(const ResultsFile& results, const PictureOptions& options)
   return options.title_name.empty() ? results.path().stem().string() : options.title_name;
 }
 
+// Two centred lines, shrunk to fit the picture's width.
 void title(cairo_t* cr, const Canvas& canvas, const std::string& line1, const std::string& line2) {
+  auto fitted = [&](const std::string& s, double size, bool bold) {
+    cairo_save(cr);
+    cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    const double w = text_width(cr, s, size);
+    cairo_restore(cr);
+    return std::max(8.0, std::min(size, size * (canvas.width() - 30) / std::max(w, 1.0)));
+  };
   cairo_set_source_rgb(cr, 0, 0, 0);
-  text(cr, canvas.width() / 2.0, 30, line1, 20, 0.5, 1.0, true);
+  text(cr, canvas.width() / 2.0, 30, line1, fitted(line1, 20, true), 0.5, 1.0, true);
   if (!line2.empty()) {
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    text(cr, canvas.width() / 2.0, 54, line2, 14, 0.5, 1.0);
+    text(cr, canvas.width() / 2.0, 54, line2, fitted(line2, 14, false), 0.5, 1.0);
     cairo_set_source_rgb(cr, 0, 0, 0);
   }
 }
@@ -342,9 +350,11 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
   const DisplayUnit du = display_unit(units);
   const std::string name = case_name(results, options);
   const std::string when = std::isnan(critical_time) ? std::string("static load case")
-                                                     : fmt::format("at t = {:.3f} s (time of the peak)", critical_time);
+                                                     : fmt::format("t = {:.3f} s (time of the peak)", critical_time);
   const std::string field_name = options.field == "von_mises" ? std::string("von Mises stress") : options.field;
-  title(cr, canvas, fmt::format("{}: {}, {}, deformation scaled x{:g}", name, field_name, when, scale),
+  title(cr, canvas,
+        fmt::format("{}: {}{} {}, deformation scaled x{:g}", name, field_name,
+                    std::isnan(critical_time) ? "," : " at", when, scale),
         fmt::format("oblique view of the x-y plane (z drawn at {:g}°, x{:g}); each body in its own frame; "
                     "peak {:.2f} {} on {}, node {}",
                     options.oblique_angle_deg, k, shown_max * du.factor, du.label, views[peak_env].name,
@@ -377,7 +387,7 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
     else ax.left += (area_w - w) / 2;
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(cr, ax.left, ax.top - 8,
-         fmt::format("{}: max {:.2f} {} (node {})", v.name, v.peak * du.factor, du.label, v.peak_node), font + 1,
+         fmt::format("{}: max {:.2f} {}", v.name, v.peak * du.factor, du.label), font + 1,
          0.0, 1.0, true);
     draw_axes(cr, ax, "x [mm]", "y [mm]", font - 1, true, std::max(3, int(w / 70)), std::max(3, int(h / 60)));
 
@@ -461,7 +471,8 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
     if (vmax - t > 0.35 * step) text(cr, bx + bw + 8, py, tick_label(t, step), font - 1, 0.0, 0.5);
   }
   text(cr, bx + bw + 8, by + 0.5, fmt::format("{:.2f}", vmax), font - 1, 0.0, 0.5, true);
-  text(cr, bx + bw / 2, by - 24, options.field, font, 0.5, 1.0, true);
+  text(cr, bx + bw / 2, by - 24, options.field == "von_mises" ? std::string("von Mises") : options.field, font, 0.5, 1.0,
+       true);
   text(cr, bx + bw / 2, by - 8, "[" + du.label + "]", font, 0.5, 1.0);
   canvas.save(png);
   return {critical_time, scale, shown_max, views[peak_env].name, views[peak_env].peak_node};

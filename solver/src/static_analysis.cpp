@@ -6,11 +6,16 @@ namespace kinetofem::fem {
 
 LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
                                            CholmodOptions options)
+    : LinearStaticAnalysis(model, log,
+                           StaticSolverOptions{LinearSolverMethod::Direct, options, AmgOptions{}}) {}
+
+LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
+                                           const StaticSolverOptions& options)
     : model_(model),
       log_(log),
       dofs_((model.mesh.validate(), model.material.validate(), model.mesh.node_count()),
             model.supports),
-      solver_(options, &log) {
+      solver_(options.direct, &log) {
   const Mesh& mesh = model.mesh;
   log_.info("  FE model: {} nodes, {} elements, {} DoFs ({} free, {} prescribed)",
             mesh.node_count(), mesh.element_count(), dofs_.dof_count(), dofs_.free_count(),
@@ -21,7 +26,36 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
   stiffness_ = assemble_stiffness(mesh, model.material, dofs_);
   timings_.assembly_seconds = clock.seconds();
   log_.info("  assembly: {:.2f} s", timings_.assembly_seconds);
-  solver_.analyze(stiffness_.free_free);
+
+  // Choice of the linear solver. Direct and Auto first run CHOLMOD's symbolic
+  // analysis, which predicts the factor's size before any numeric work.
+  bool iterative = options.method == LinearSolverMethod::Iterative;
+  if (!iterative) {
+    try {
+      solver_.analyze(stiffness_.free_free);
+    } catch (const Error& error) {
+      // analyze() fills its statistics before it compares the predicted factor
+      // with the limit, so filled statistics mean the limit was the reason;
+      // any other failure (CHOLMOD itself) is not a reason to switch.
+      const CholmodStatistics& predicted = solver_.statistics();
+      const bool too_large = predicted.equations == stiffness_.free_free.rows() &&
+                             predicted.factor_bytes > 0.0;
+      if (options.method == LinearSolverMethod::Direct || !too_large) throw;
+      log_.info("  solver: iterative (AMG-preconditioned CG), because {}", error.what());
+      iterative = true;
+    }
+    if (!iterative && options.method == LinearSolverMethod::Auto)
+      log_.info("  solver: direct (CHOLMOD), the factor fits the memory limit");
+  }
+  if (iterative) {
+    amg_ = std::make_unique<AmgSolver>(options.iterative, &log);
+    amg_->setup(stiffness_.free_free, mesh.nodes, dofs_);
+    return;
+  }
+  factorize_direct();
+}
+
+void LinearStaticAnalysis::factorize_direct() {
   try {
     solver_.factorize(stiffness_.free_free);
   } catch (const NotPositiveDefinite& error) {
@@ -35,7 +69,7 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
     std::string free_directions;
     for (int c = 0; c < 3; ++c) {
       bool held = false;
-      for (const auto& support : model.supports) held = held || (support.fixed[c] && !support.nodes.empty());
+      for (const auto& support : model_.supports) held = held || (support.fixed[c] && !support.nodes.empty());
       if (!held) free_directions += std::string(free_directions.empty() ? "" : ", ") + "xyz"[c];
     }
     const std::string cause =
@@ -68,7 +102,7 @@ std::vector<DisplacementField> LinearStaticAnalysis::solve_forces(
     if (eq >= 0) rhs.row(eq) = external_forces.row(d);
   }
   rhs.colwise() -= stiffness_.prescribed_coupling_force;
-  const Eigen::MatrixXd x = solver_.solve(rhs);
+  const Eigen::MatrixXd x = amg_ ? amg_->solve(rhs) : solver_.solve(rhs);
   std::vector<DisplacementField> out;
   out.reserve(size_t(cases));
   for (Index k = 0; k < cases; ++k) {

@@ -137,3 +137,35 @@ TEST(MeshGeometry, MissingAndUnknownFilesThrowNamingTheFile) {
 
 }  // namespace
 }  // namespace kinetofem::meshes
+
+namespace kinetofem::meshes {
+namespace {
+
+TEST(MeshCache, SecondMeshingOfTheSameGeometryIsReadFromTheCache) {
+  const auto dir = std::filesystem::temp_directory_path() / "kinetofem_mesh_cache_test";
+  std::filesystem::remove_all(dir);
+  MeshOptions options;
+  options.element_size_m = 0.02;
+  options.cache_dir = dir;
+  LeverDimensions d;
+  const fem::Mesh first = mesh_lever(d, options);
+  ASSERT_TRUE(std::filesystem::exists(dir)) << "no cache directory made";
+  ASSERT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+  const fem::Mesh second = mesh_lever(d, options);  // from the cache
+  EXPECT_EQ(second.node_count(), first.node_count());
+  EXPECT_EQ(second.element_count(), first.element_count());
+  EXPECT_EQ((second.nodes - first.nodes).cwiseAbs().maxCoeff(), 0.0);  // binary .msh: exact
+  EXPECT_EQ(second.face_set("bore_A").front().connectivity, first.face_set("bore_A").front().connectivity);
+  // A changed dimension or size is a new entry.
+  d.thickness_m = 0.03;
+  mesh_lever(d, options);
+  options.element_size_m = 0.025;
+  mesh_lever(d, options);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 3);
+  // A damaged entry is meshed again, not an error.
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) std::ofstream(entry.path()) << "garbage";
+  EXPECT_EQ(mesh_lever(d, options).element_count() > 0, true);
+}
+
+}  // namespace
+}  // namespace kinetofem::meshes

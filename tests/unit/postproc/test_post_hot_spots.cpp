@@ -97,9 +97,14 @@ TEST(PostHotSpots, SeparationIsAppliedPerBodyAndCanBeSwitchedOff) {
   const auto spots = find_hot_spots(envelopes, {.count = 10, .separation_m = 0.025});
   ASSERT_EQ(spots.size(), 10u);
   for (size_t i = 0; i < spots.size(); ++i) {
-    if (i) EXPECT_GE(spots[i - 1].value, spots[i].value);
-    for (size_t j = 0; j < i; ++j)
-      if (spots[i].body == spots[j].body) EXPECT_GT((spots[i].position_m - spots[j].position_m).norm(), 0.025);
+    if (i) {
+      EXPECT_GE(spots[i - 1].value, spots[i].value);
+    }
+    for (size_t j = 0; j < i; ++j) {
+      if (spots[i].body == spots[j].body) {
+        EXPECT_GT((spots[i].position_m - spots[j].position_m).norm(), 0.025);
+      }
+    }
   }
   EXPECT_THROW(find_hot_spots(envelopes, {.count = -1}), Error);
 }

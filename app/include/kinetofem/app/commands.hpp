@@ -20,5 +20,6 @@ void add_run_command(CLI::App& app, CommandContext& context);   // kinetofem run
 void add_case_command(CLI::App& app, CommandContext& context);  // kinetofem case --template TYPE
 void add_post_command(CLI::App& app, CommandContext& context);  // kinetofem post RESULT.h5
 void add_batch_command(CLI::App& app, CommandContext& context);  // kinetofem batch CASES... --jobs N
+void add_verify_command(CLI::App& app, CommandContext& context);  // kinetofem verify [-o DIR] [--quick]
 
 }  // namespace kinetofem::app

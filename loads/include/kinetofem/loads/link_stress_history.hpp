@@ -14,7 +14,8 @@
 //
 // The support's six reactions are computed at every step from K u - f and
 // must vanish (the loads are self-equilibrated): above `reaction_tolerance`
-// of the largest nodal load it is an Error naming link and time.
+// of the link's total load (sum of the nodal force magnitudes) it is an
+// Error naming link and time.
 #include <functional>
 #include <vector>
 
@@ -48,7 +49,7 @@ struct LinkEnvelope {
   fem::Index peak_displacement_node = 0;
   int peak_displacement_step = 0;
   double worst_equilibrium_residual = 0.0;
-  double worst_support_reaction = 0.0;  // relative to the largest nodal load
+  double worst_support_reaction = 0.0;  // relative to the total load (sum of |f_i|)
   fem::CholmodStatistics solver;
   double assembly_seconds = 0.0, solve_seconds = 0.0, recovery_seconds = 0.0;
 };

@@ -40,6 +40,10 @@ struct MeshOptions {
   // the high-order optimizer that untangles curved elements). Costs time.
   bool optimize = true;
   bool verbose = false;  // let Gmsh print its progress
+  // Mesh cache: when set, a mesh is stored there as .msh (binary) under a
+  // content hash of the geometry file's text, the parameters and these
+  // options, and read back instead of meshing again. Empty: no cache.
+  std::filesystem::path cache_dir;
 
   void validate() const;  // throws Error naming the bad option
 };

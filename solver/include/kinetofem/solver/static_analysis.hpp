@@ -3,9 +3,18 @@
 // cases. The stiffness is assembled, analysed and factorized once at
 // construction; solve() takes all load cases as one block of right-hand
 // sides. Prints DoFs, nnz(K), nnz(L), flops and times through the Log.
+//
+// Linear solver (StaticSolverOptions::method): the direct CHOLMOD
+// factorization, or AMG-preconditioned CG (AmgSolver, hypre) for models whose
+// Cholesky factor does not fit in memory; `Auto` runs CHOLMOD's symbolic
+// analysis (cheap: ordering + factor size, no numeric work) and takes the
+// iterative path only when the predicted factor exceeds max_factor_bytes,
+// printing the decision and why.
+#include <memory>
 #include <vector>
 
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/solver/amg_solver.hpp"
 #include "kinetofem/solver/assembly.hpp"
 #include "kinetofem/solver/cholmod_solver.hpp"
 #include "kinetofem/solver/fe_model.hpp"
@@ -17,10 +26,24 @@ struct StaticTimings {
   double load_assembly_seconds = 0.0;
 };
 
+enum class LinearSolverMethod {
+  Direct,     // CHOLMOD; an Error when the factor would exceed max_factor_bytes
+  Iterative,  // AMG-preconditioned CG (hypre)
+  Auto,       // Direct unless the symbolic analysis predicts a factor above the limit
+};
+
+struct StaticSolverOptions {
+  LinearSolverMethod method = LinearSolverMethod::Auto;
+  CholmodOptions direct;  // max_factor_bytes is also the limit Auto decides by
+  AmgOptions iterative;
+};
+
 class LinearStaticAnalysis {
  public:
-  // The model must outlive the analysis.
+  // The model must outlive the analysis. Direct solver (CHOLMOD).
   LinearStaticAnalysis(const FeModel& model, const Log& log, CholmodOptions options = {});
+  // Solver chosen by options.method.
+  LinearStaticAnalysis(const FeModel& model, const Log& log, const StaticSolverOptions& options);
 
   // Displacement (N x 3, m) for each load case, in the order given.
   std::vector<DisplacementField> solve(const std::vector<LoadCase>& load_cases);
@@ -39,7 +62,12 @@ class LinearStaticAnalysis {
                                const std::vector<Index>& nodes) const;
 
   const DofMap& dofs() const { return dofs_; }
+  // CHOLMOD's statistics; on the iterative path only the symbolic analysis
+  // (predicted factor size) when Auto ran it, else empty.
   const CholmodStatistics& solver_statistics() const { return solver_.statistics(); }
+  bool uses_iterative_solver() const { return amg_ != nullptr; }
+  // The AMG-PCG statistics, or nullptr on the direct path.
+  const AmgStatistics* iterative_statistics() const { return amg_ ? &amg_->statistics() : nullptr; }
   const StaticTimings& timings() const { return timings_; }
 
  private:
@@ -48,7 +76,10 @@ class LinearStaticAnalysis {
   DofMap dofs_;
   AssembledStiffness stiffness_;
   CholmodSolver solver_;
+  std::unique_ptr<AmgSolver> amg_;  // set when the iterative path is taken
   StaticTimings timings_;
+
+  void factorize_direct();
 };
 
 }  // namespace kinetofem::fem

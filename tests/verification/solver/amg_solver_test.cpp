@@ -1,0 +1,155 @@
+// The iterative solve path (AmgSolver: hypre PCG + BoomerAMG with the
+// rigid-body modes) against the direct CHOLMOD solve on models both can
+// solve, several right-hand sides at once; the automatic switch of
+// LinearStaticAnalysis; the error on non-convergence.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/solver/amg_solver.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
+#include "kinetofem/testing/box_mesh.hpp"
+
+namespace kinetofem::fem {
+namespace {
+
+// Cantilever 8:1:1 (1.6 m x 0.2 m x 0.2 m, steel) clamped on x = 0; the
+// element edges are perturbed at random so the mesh is not structured.
+FeModel cantilever(ElementType type, std::array<int, 3> divisions) {
+  FeModel model;
+  testing::BoxMeshOptions options;
+  options.length_m = Eigen::Vector3d(1.6, 0.2, 0.2);
+  options.divisions = divisions;
+  options.type = type;
+  options.random_perturbation = 0.2;
+  options.seed = 7;
+  model.mesh = testing::box_mesh(options);
+  model.material = IsotropicMaterial{"steel", 210e9, 0.3, 7850.0};
+  model.supports = {{"clamp", model.mesh.node_set("x0"), {true, true, true},
+                     Eigen::Vector3d::Zero()}};
+  return model;
+}
+
+// Three load cases of different character: bending by an end shear, torsion
+// plus axial tension on the free end, and self-weight with a pressure.
+std::vector<LoadCase> load_cases() {
+  LoadCase shear;
+  shear.name = "shear";
+  shear.tractions = {{"x1", Eigen::Vector3d(0, -2e6, 0)}};
+  LoadCase twist;
+  twist.name = "twist";
+  twist.tractions = {{"y1", Eigen::Vector3d(0, 0, 1e5)}, {"x1", Eigen::Vector3d(5e6, 0, -1e6)}};
+  LoadCase weight;
+  weight.name = "weight";
+  weight.gravity_m_s2 = Eigen::Vector3d(0, 0, -9.81);
+  weight.pressures = {{"z1", 3e4}};
+  return {shear, twist, weight};
+}
+
+// max |u_a - u_b| over all nodes and components, relative to max |u_b|.
+double max_relative_difference(const DisplacementField& a, const DisplacementField& b) {
+  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+}
+
+void expect_iterative_matches_direct(const FeModel& model) {
+  const Log log = Log::quiet();
+  LinearStaticAnalysis direct(model, log, StaticSolverOptions{LinearSolverMethod::Direct, {}, {}});
+  LinearStaticAnalysis iterative(model, log,
+                                 StaticSolverOptions{LinearSolverMethod::Iterative, {}, {}});
+  ASSERT_FALSE(direct.uses_iterative_solver());
+  ASSERT_TRUE(iterative.uses_iterative_solver());
+  const auto cases = load_cases();
+  const auto u_direct = direct.solve(cases);
+  const auto u_iterative = iterative.solve(cases);
+  ASSERT_EQ(u_iterative.size(), cases.size());
+  const AmgStatistics& stats = *iterative.iterative_statistics();
+  for (size_t k = 0; k < cases.size(); ++k) {
+    // Reference: the CHOLMOD solution of the same K_ff and loads. The PCG
+    // tolerance 1e-10 (relative residual) bounds the error by cond(K) * 1e-10;
+    // required: 1e-6 of the largest displacement (the criterion).
+    EXPECT_LT(max_relative_difference(u_iterative[k], u_direct[k]), 1e-6) << cases[k].name;
+    EXPECT_LE(stats.relative_residuals[k], 10 * 1e-10) << cases[k].name;
+    // Multigrid with the rigid-body modes: the iteration count stays small.
+    EXPECT_LT(stats.iterations[k], 200) << cases[k].name;
+  }
+  EXPECT_GE(stats.levels, 2);
+  EXPECT_EQ(stats.equations, model.mesh.node_count() * 3 - Index(model.mesh.node_set("x0").size()) * 3);
+}
+
+TEST(AmgSolver, Tet10CantileverMatchesCholmodForSeveralLoadCases) {
+  // 33 x 9 x 9 nodes: 8019 nodes, 23 490 free DoFs.
+  expect_iterative_matches_direct(cantilever(ElementType::Tet10, {16, 4, 4}));
+}
+
+TEST(AmgSolver, Hex20CantileverMatchesCholmodForSeveralLoadCases) {
+  expect_iterative_matches_direct(cantilever(ElementType::Hex20, {24, 5, 5}));
+}
+
+TEST(AmgSolver, RigidBodyModesAreTheNullSpaceOfTheUnsupportedStiffness) {
+  FeModel model = cantilever(ElementType::Tet10, {4, 1, 1});
+  model.supports.clear();
+  const DofMap dofs(model.mesh.node_count(), model.supports);
+  const AssembledStiffness K = assemble_stiffness(model.mesh, model.material, dofs);
+  const Eigen::MatrixXd modes = rigid_body_modes(model.mesh.nodes);
+  ASSERT_EQ(modes.cols(), 6);
+  const Eigen::MatrixXd Km = K.free_free.selfadjointView<Eigen::Upper>() * modes;
+  // Reference: K r = 0 for every rigid-body motion r of a free body, to
+  // round-off relative to ||K|| ||r||.
+  const double scale = K.free_free.coeffs().cwiseAbs().maxCoeff();
+  for (int k = 0; k < 6; ++k)
+    EXPECT_LT(Km.col(k).cwiseAbs().maxCoeff() / (scale * modes.col(k).cwiseAbs().maxCoeff()), 1e-10)
+        << "mode " << k;
+}
+
+TEST(AmgSolver, AutoSwitchesToIterativeWhenTheFactorExceedsTheLimit) {
+  const FeModel model = cantilever(ElementType::Tet10, {12, 3, 3});
+  const Log log = Log::quiet();
+  StaticSolverOptions options;  // Auto
+  LinearStaticAnalysis fits(model, log, options);
+  EXPECT_FALSE(fits.uses_iterative_solver());
+  options.direct.max_factor_bytes = 1e3;  // 1 kB: no factor fits
+  LinearStaticAnalysis switched(model, log, options);
+  EXPECT_TRUE(switched.uses_iterative_solver());
+  // The decision rests on the symbolic analysis: its prediction is kept.
+  EXPECT_GT(switched.solver_statistics().factor_bytes, 1e3);
+  const auto u_direct = fits.solve(load_cases());
+  const auto u_auto = switched.solve(load_cases());
+  for (size_t k = 0; k < u_direct.size(); ++k)
+    EXPECT_LT(max_relative_difference(u_auto[k], u_direct[k]), 1e-6);  // as above
+  // The direct method alone keeps refusing such a model.
+  options.method = LinearSolverMethod::Direct;
+  EXPECT_THROW(LinearStaticAnalysis(model, log, options), Error);
+}
+
+TEST(AmgSolver, NonConvergenceIsAnErrorNamingIterationsAndResidual) {
+  const FeModel model = cantilever(ElementType::Tet10, {8, 2, 2});
+  const Log log = Log::quiet();
+  StaticSolverOptions options;
+  options.method = LinearSolverMethod::Iterative;
+  options.iterative.max_iterations = 2;
+  LinearStaticAnalysis analysis(model, log, options);
+  try {
+    analysis.solve(load_cases());
+    ADD_FAILURE() << "two PCG iterations reached the 1e-10 tolerance";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("did not converge"), std::string::npos) << message;
+    EXPECT_NE(message.find("after 2 iterations"), std::string::npos) << message;
+  }
+}
+
+TEST(AmgSolver, ZeroRightHandSideGivesZeroAndRejectsWrongSizes) {
+  const FeModel model = cantilever(ElementType::Hex20, {4, 1, 1});
+  const DofMap dofs(model.mesh.node_count(), model.supports);
+  const AssembledStiffness K = assemble_stiffness(model.mesh, model.material, dofs);
+  AmgSolver solver;
+  solver.setup(K.free_free, model.mesh.nodes, dofs);
+  const Eigen::MatrixXd x = solver.solve(Eigen::MatrixXd::Zero(dofs.free_count(), 2));
+  EXPECT_EQ(x.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_THROW(solver.solve(Eigen::MatrixXd::Zero(dofs.free_count() + 1, 1)), Error);
+}
+
+}  // namespace
+}  // namespace kinetofem::fem
