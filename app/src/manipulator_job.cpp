@@ -264,10 +264,24 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   const bool with_static = c.boolean("static_study.enabled");
   mech::Frame static_frame;
   if (with_static) {
+    // The pose is reached by continuation from the design position (Newton
+    // from the design pose alone diverges far from it): a 3-4-5 rise ends
+    // with zero speed and acceleration, so its last frame is the static state.
     mech::ManipulatorDefinition at_rest = def;
-    at_rest.lever_motion = std::make_shared<mech::ConstantVelocityLaw>(0.0, c.number("static_study.dphi_deg"));
+    at_rest.lever_motion = std::make_shared<mech::Polynomial345Law>(c.number("static_study.dphi_deg"), 1.0);
     const mech::MultibodySystem rest_system(mech::make_manipulator_model(at_rest));
-    static_frame = mech::run_kinematics(rest_system, {0.0}).frames.front();
+    std::vector<double> ramp;
+    for (int k = 0; k <= 40; ++k) ramp.push_back(k / 40.0);
+    try {
+      mech::KinematicOptions ramp_options;
+      ramp_options.slack_is_error = false;  // only the final, static state counts
+      static_frame = mech::run_kinematics(rest_system, ramp, ramp_options).frames.back();
+      for (const auto& chain : static_frame.chains)
+        require(chain.tension_N > 0, "chain '{}' is slack at rest in this pose (tension {:.4g} N)",
+                chain.name, chain.tension_N);
+    } catch (const Error& e) {
+      fail("{}: the static study's pose cannot be reached: {}", c.where("static_study.dphi_deg"), e.what());
+    }
   }
 
   // ---- link loads and FE over the motion ------------------------------------
