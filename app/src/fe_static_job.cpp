@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/meshes/lever.hpp"
@@ -21,7 +22,7 @@ constexpr double kMm = 1e-3, kMpa = 1e6;
 const std::vector<KeySpec>& fe_static_schema() {
   static const meshes::LeverDimensions lever;
   static const fem::IsotropicMaterial steel;
-  static const std::vector<KeySpec> schema = {
+  static const std::vector<KeySpec> schema = with_material_and_sweep({
       {.path = "case.name", .type = Type::String, .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
       {.path = "case.type", .type = Type::String, .allowed = {"fe_static"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text, copied into the results"},
@@ -48,13 +49,6 @@ const std::vector<KeySpec>& fe_static_schema() {
       {.path = "mesh.family", .type = Type::String, .default_text = "tet", .allowed = {"tet", "hex"},
        .doc = "'tet': tetrahedra; 'hex': all-hexahedral by splitting tetrahedra"},
       {.path = "mesh.optimize", .type = Type::Boolean, .default_number = 1, .doc = "optimize element shapes after meshing"},
-      {.path = "material.name", .type = Type::String, .default_text = "steel", .doc = "material name (for the record)"},
-      {.path = "material.youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = kMpa,
-       .default_number = steel.youngs_modulus_pa / kMpa, .min = 0, .min_exclusive = true, .doc = "Young's modulus E"},
-      {.path = "material.poisson_ratio", .type = Type::Number, .default_number = steel.poisson_ratio, .min = -1,
-       .max = 0.4999, .doc = "Poisson's ratio nu (must be below 0.5)"},
-      {.path = "material.density_kg_m3", .type = Type::Number, .unit = "kg/m^3", .default_number = steel.density_kg_m3,
-       .min = 0, .doc = "density (for gravity loads)"},
       {.path = "support", .type = Type::TableArray, .doc = "displacement supports"},
       {.path = "support[].set", .type = Type::String, .doc = "node set (physical group) of the mesh", .required = true},
       {.path = "support[].fixed", .type = Type::StringList, .default_text = "x,y,z", .allowed = {"x", "y", "z"},
@@ -75,13 +69,7 @@ const std::vector<KeySpec>& fe_static_schema() {
        .doc = "fill-reducing ordering of the Cholesky factorization"},
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
        .doc = "memory allowed for the factor; 0 = 80 % of physical memory"},
-      {.path = "sweep.parameters", .type = Type::StringList,
-       .doc = "kinetofem batch: keys to sweep, e.g. [\"payload.casting_mass_kg\"] (kinetofem run ignores [sweep])"},
-      {.path = "sweep.values", .type = Type::Array,
-       .doc = "kinetofem batch: the values of each swept key, e.g. [[5, 10, 15]] ([] where linspace gives them)"},
-      {.path = "sweep.linspace", .type = Type::Array,
-       .doc = "kinetofem batch: [start, stop, count] of each swept key, e.g. [[5.0, 40.0, 20]] ([] where values gives them)"},
-  };
+  });
   return schema;
 }
 
@@ -157,11 +145,7 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
 
   fem::FeModel model;
   model.mesh = build_mesh(c, log);
-  model.material.name = c.text_value("material.name");
-  model.material.youngs_modulus_pa = c.number("material.youngs_modulus_mpa");
-  model.material.poisson_ratio = c.number("material.poisson_ratio");
-  model.material.density_kg_m3 = c.number("material.density_kg_m3");
-  model.material.validate();
+  model.material = read_material(c);
 
   require(c.count("support") > 0, "{}: no [[support]]: a static model needs supports",
           c.path().string());

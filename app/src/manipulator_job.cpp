@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/loads/link_loads.hpp"
@@ -41,7 +42,7 @@ const std::vector<KeySpec>& manipulator_schema() {
   static const meshes::LeverDimensions lever;
   static const meshes::ArmDimensions arm;
   static const fem::IsotropicMaterial steel;
-  static const std::vector<KeySpec> schema = {
+  static const std::vector<KeySpec> schema = with_material_and_sweep({
       {.path = "case.name", .type = Type::String, .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
       {.path = "case.type", .type = Type::String, .allowed = {"manipulator"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text"},
@@ -75,10 +76,6 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "mesh.order", .type = Type::Integer, .default_number = 2, .min = 1, .max = 2, .doc = "element order: 1 (TET4) or 2 (TET10)"},
       {.path = "mesh.cache", .type = Type::Boolean, .default_number = 1,
        .doc = "keep meshes in <output dir>/mesh_cache, keyed by a hash of the geometry, dimensions and mesh options, and reuse them"},
-      {.path = "material.name", .type = Type::String, .default_text = "steel", .doc = "material name"},
-      {.path = "material.youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = kMpa, .default_number = steel.youngs_modulus_pa / kMpa, .min = 0, .min_exclusive = true, .doc = "Young's modulus E"},
-      {.path = "material.poisson_ratio", .type = Type::Number, .default_number = steel.poisson_ratio, .min = -1, .max = 0.4999, .doc = "Poisson's ratio (below 0.5)"},
-      {.path = "material.density_kg_m3", .type = Type::Number, .unit = "kg/m^3", .default_number = steel.density_kg_m3, .min = 0, .min_exclusive = true, .doc = "density"},
       {.path = "loads.bore_load", .type = Type::String, .default_text = "coupling", .allowed = {"coupling", "bearing"},
        .doc = "pin loads on bores: 'coupling' (distributing, RBE3-like: exact resultant, any reaction) or 'bearing' (cosine pressure)"},
       {.path = "static_study.enabled", .type = Type::Boolean, .default_number = 1, .doc = "also solve the static pose study (gravity and payload, at rest)"},
@@ -86,13 +83,7 @@ const std::vector<KeySpec>& manipulator_schema() {
        .doc = "lever angle of the static pose from the design position"},
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0, .doc = "memory allowed for a factor; 0 = 80 % of physical memory"},
       {.path = "solver.block_size", .type = Type::Integer, .default_number = 32, .min = 1, .max = 100000, .doc = "right-hand sides per block solve"},
-      {.path = "sweep.parameters", .type = Type::StringList,
-       .doc = "kinetofem batch: keys to sweep, e.g. [\"payload.casting_mass_kg\"] (kinetofem run ignores [sweep])"},
-      {.path = "sweep.values", .type = Type::Array,
-       .doc = "kinetofem batch: the values of each swept key, e.g. [[5, 10, 15]] ([] where linspace gives them)"},
-      {.path = "sweep.linspace", .type = Type::Array,
-       .doc = "kinetofem batch: [start, stop, count] of each swept key, e.g. [[5.0, 40.0, 20]] ([] where values gives them)"},
-  };
+  });
   return schema;
 }
 
@@ -156,12 +147,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     fail("{}: [motion]: {}", c.path().string(), e.what());
   }
 
-  fem::IsotropicMaterial material;
-  material.name = c.text_value("material.name");
-  material.youngs_modulus_pa = c.number("material.youngs_modulus_mpa");
-  material.poisson_ratio = c.number("material.poisson_ratio");
-  material.density_kg_m3 = c.number("material.density_kg_m3");
-  material.validate();
+  const fem::IsotropicMaterial material = read_material(c);
 
   meshes::MeshOptions mesh_options;
   mesh_options.element_size_m = c.number("mesh.element_size_mm");

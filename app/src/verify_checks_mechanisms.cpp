@@ -8,6 +8,8 @@
 #include <numbers>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "kinetofem/app/verify.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/crank_slider_gripper.hpp"
@@ -51,13 +53,13 @@ std::vector<CheckRow> spec1_transfer_function(const CheckContext&) {
                            lc.ctm(20 * kDeg).dpsi_d1, 0.000005, why)};
 }
 
-std::vector<CheckRow> spec1_paths(const CheckContext& context) {
+std::vector<CheckRow> spec1_paths(const CheckContext&) {
   const auto range = km::lever_chain_published_range();
   const km::LeverChain lc_c(spec1_example(0.0));
   const km::LeverChain lc_h(spec1_example(0.1));
-  // 0.01 deg steps (0.05 with --quick): x moves ~16 mm/deg at the range's end,
-  // so the sampling error of the extents is < 1 mm, inside the +-5 mm below.
-  const std::size_t n = context.quick ? 3261 : 16301;
+  // 0.01 deg steps: x moves ~16 mm/deg at the range's ends, so sampling
+  // changes the extents by < 0.2 mm, far inside the +-5 mm below.
+  const std::size_t n = 16301;
   const auto pc = km::sample_lever_chain_path(lc_c, range.lo_rad, range.hi_rad, n);
   const auto ph = km::sample_lever_chain_path(lc_h, range.lo_rad, range.hi_rad, n);
   // Narrowest 800 mm horizontal band, deviations from the design tangent
@@ -123,12 +125,11 @@ std::vector<CheckRow> spec2_four_bar(const CheckContext&) {
   }
   // Bisection to 1e-12 rad: 1e-8 deg is far above that and far below any
   // meaningful difference.
-  rows.push_back(compare_absolute("four-bar lower assembly limit dphi", "closed form |A B0| = l2 + l3, |l2 - l3|", "deg",
-                                  (lo - design) / kDeg, (range.lo_rad - design) / kDeg, 1e-8,
-                                  "bisection to 1e-12 rad"));
-  rows.push_back(compare_absolute("four-bar upper assembly limit dphi", "closed form |A B0| = l2 + l3, |l2 - l3|", "deg",
-                                  (hi - design) / kDeg, (range.hi_rad - design) / kDeg, 1e-8,
-                                  "bisection to 1e-12 rad"));
+  const char* limit_source = "closed form |A B0| = l2 + l3, |l2 - l3|";
+  rows.push_back(compare_absolute("four-bar lower assembly limit dphi", limit_source, "deg", (lo - design) / kDeg,
+                                  (range.lo_rad - design) / kDeg, 1e-8, "bisection to 1e-12 rad"));
+  rows.push_back(compare_absolute("four-bar upper assembly limit dphi", limit_source, "deg", (hi - design) / kDeg,
+                                  (range.hi_rad - design) / kDeg, 1e-8, "bisection to 1e-12 rad"));
   return rows;
 }
 
@@ -218,17 +219,22 @@ std::vector<CheckRow> spec6_gripper(const CheckContext&) {
   o.pressure_limits = true;
   const auto lim_905 = km::operating_hull(km::gripper_operating_ranges(0.905, 0.905, o));
   const auto lim_11 = km::operating_hull(km::gripper_operating_ranges(1.1, 0.82, o));
-  const std::string r1 = "SPEC §6, r = e, sigma = 0.905";
-  const std::string r2 = "SPEC §6, sigma = 1.1, gamma = 0.82";
-  rows.push_back(compare_absolute("r = e: |U_V - 1| <= 0.05 from", r1 + ": 142 deg", "deg", 142, free_905.lo_rad / kDeg, 1, why));
-  rows.push_back(compare_absolute("r = e: |U_V - 1| <= 0.05 to", r1 + ": 170 deg", "deg", 170, free_905.hi_rad / kDeg, 1, why));
-  rows.push_back(compare_absolute("r = e, with theta12 <= 30 deg: from", r1 + ": 142 deg", "deg", 142, lim_905.lo_rad / kDeg, 1, why));
-  rows.push_back(compare_absolute("r = e, with theta12 <= 30 deg: to", r1 + ": 154 deg", "deg", 154, lim_905.hi_rad / kDeg, 1, why));
-  rows.push_back(compare_absolute("best design: |U_V - 1| <= 0.05 from", r2 + ": 139 deg", "deg", 139, free_11.lo_rad / kDeg, 1,
-                                  "hull of the ranges (shallow dip to 0.9493 at 152.7 deg); 1 deg"));
-  rows.push_back(compare_absolute("best design: |U_V - 1| <= 0.05 to", r2 + ": 165 deg", "deg", 165, free_11.hi_rad / kDeg, 1, why));
-  rows.push_back(compare_absolute("best design, pressure limits: from", r2 + ": 139 deg", "deg", 139, lim_11.lo_rad / kDeg, 1, why));
-  rows.push_back(compare_absolute("best design, pressure limits: to", r2 + ": 163 deg", "deg", 163, lim_11.hi_rad / kDeg, 1, why));
+  // One row per published range end (deg).
+  auto end_row = [&](const std::string& what, const std::string& source, double published, double computed_rad,
+                     const char* note) {
+    rows.push_back(compare_absolute(what, fmt::format("{}: {:g} deg", source, published), "deg", published,
+                                    computed_rad / kDeg, 1.0, note));
+  };
+  const std::string r1 = "SPEC §6, r = e, sigma = 0.905", r2 = "SPEC §6, sigma = 1.1, gamma = 0.82";
+  end_row("r = e: |U_V - 1| <= 0.05 from", r1, 142, free_905.lo_rad, why);
+  end_row("r = e: |U_V - 1| <= 0.05 to", r1, 170, free_905.hi_rad, why);
+  end_row("r = e, with theta12 <= 30 deg: from", r1, 142, lim_905.lo_rad, why);
+  end_row("r = e, with theta12 <= 30 deg: to", r1, 154, lim_905.hi_rad, why);
+  end_row("best design: |U_V - 1| <= 0.05 from", r2, 139, free_11.lo_rad,
+          "hull of the ranges (shallow dip to 0.9493 at 152.7 deg); 1 deg");
+  end_row("best design: |U_V - 1| <= 0.05 to", r2, 165, free_11.hi_rad, why);
+  end_row("best design, pressure limits: from", r2, 139, lim_11.lo_rad, why);
+  end_row("best design, pressure limits: to", r2, 163, lim_11.hi_rad, why);
   // e = H/2 = 50 mm: l = e/gamma = 60.98 mm, r = sigma l printed 67 mm.
   const auto dims = km::gripper_dimensions_from_offset(0.050, 1.1, 0.82);
   rows.push_back(compare_absolute("design example: connecting rod l = e / gamma", "SPEC §6, l = 60.98 mm", "mm", 60.98,

@@ -210,16 +210,14 @@ std::string report_markdown(const VerificationReport& r) {
   md += fmt::format("- wall time: {:.1f} s\n\n", r.total_seconds);
   md += "Error: |computed − reference| (abs., in the unit) or that over |reference| (rel.). "
         "PASS when error ≤ tolerance. \"reported\": informational (published vs computed, ratio), never fails.\n\n";
-  md += "| group | check | reference | source | computed | unit | error | tolerance | result |\n";
-  md += "|---|---|---|---|---|---|---|---|---|\n";
+  md += "| group | check | reference | source | computed | unit | error | tolerance | result | why this tolerance |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& rr : r.rows) {
     const CheckRow& c = rr.row;
-    std::string name = c.name;
-    if (!c.note.empty()) name += " — " + c.note;
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", md_cell(rr.group), md_cell(name),
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", md_cell(rr.group), md_cell(c.name),
                       number(c.reference),
                       md_cell(c.source), number(c.computed), md_cell(c.unit), error_text(c), tolerance_text(c),
-                      c.verdict == Verdict::Fail ? "**FAIL**" : verdict_text(c.verdict));
+                      c.verdict == Verdict::Fail ? "**FAIL**" : verdict_text(c.verdict), md_cell(c.note));
   }
   md += "\n## Time per check\n\n| check | s |\n|---|---|\n";
   for (const auto& [id, s] : r.check_seconds) md += fmt::format("| {} | {:.2f} |\n", id, s);
@@ -251,18 +249,18 @@ std::string report_html(const VerificationReport& r) {
   h += "<p>Error: |computed &minus; reference| (abs., in the unit) or that over |reference| (rel.). PASS when "
        "error &le; tolerance. &ldquo;reported&rdquo;: informational (published vs computed, ratio), never fails.</p>\n";
   h += "<table>\n<thead><tr><th>group</th><th>check</th><th>reference</th><th>source</th><th>computed</th>"
-       "<th>unit</th><th>error</th><th>tolerance</th><th>result</th></tr></thead>\n<tbody>\n";
+       "<th>unit</th><th>error</th><th>tolerance</th><th>result</th><th>why this tolerance</th></tr></thead>\n"
+       "<tbody>\n";
   for (const auto& rr : r.rows) {
     const CheckRow& c = rr.row;
     const char* cls = c.verdict == Verdict::Pass ? "pass" : c.verdict == Verdict::Fail ? "fail" : "reported";
-    std::string name = html_escape(c.name);
-    if (!c.note.empty()) name += "<br><span class=\"note\">" + html_escape(c.note) + "</span>";
     h += fmt::format(
         "<tr class=\"{}\"><td>{}</td><td>{}</td><td class=\"num\">{}</td><td>{}</td><td class=\"num\">{}</td>"
-        "<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"verdict\">{}</td></tr>\n",
-        cls, html_escape(rr.group), name, html_escape(number(c.reference)), html_escape(c.source),
+        "<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"verdict\">{}</td>"
+        "<td class=\"note\">{}</td></tr>\n",
+        cls, html_escape(rr.group), html_escape(c.name), html_escape(number(c.reference)), html_escape(c.source),
         html_escape(number(c.computed)), html_escape(c.unit), html_escape(error_text(c)),
-        html_escape(tolerance_text(c)), verdict_text(c.verdict));
+        html_escape(tolerance_text(c)), verdict_text(c.verdict), html_escape(c.note));
   }
   h += "</tbody>\n</table>\n<h2>Time per check</h2>\n<table>\n<thead><tr><th>check</th><th>s</th></tr></thead>\n"
        "<tbody>\n";

@@ -95,10 +95,12 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
   std::FILE* out = file.get();
   std::setvbuf(out, nullptr, _IOFBF, 1 << 20);
 
+  // Reals as %.12e: ccx reads at most 20 characters per field (13
+  // significant digits, sign and a three-digit exponent included).
   std::fprintf(out, "*HEADING\n%s\n", options.heading.c_str());
   std::fputs("*NODE, NSET=NALL\n", out);
   for (Index n = 0; n < mesh.node_count(); ++n)
-    std::fprintf(out, "%lld, %.17g, %.17g, %.17g\n", static_cast<long long>(n + 1),
+    std::fprintf(out, "%lld, %.12e, %.12e, %.12e\n", static_cast<long long>(n + 1),
                  mesh.nodes(n, 0), mesh.nodes(n, 1), mesh.nodes(n, 2));
 
   Index element_id = 1;
@@ -115,7 +117,7 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
     }
   }
 
-  std::fprintf(out, "*MATERIAL, NAME=MAT1\n*ELASTIC\n%.17g, %.17g\n",
+  std::fprintf(out, "*MATERIAL, NAME=MAT1\n*ELASTIC\n%.12e, %.12e\n",
                model.material.youngs_modulus_pa, model.material.poisson_ratio);
   for (size_t b = 0; b < mesh.blocks.size(); ++b)
     std::fprintf(out, "*SOLID SECTION, ELSET=E%zu, MATERIAL=MAT1\n", b + 1);
@@ -154,7 +156,7 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
       std::fputs("*BOUNDARY\n", out);
       for (Index d = 0; d < dofs.dof_count(); ++d)
         if (dofs.equation(d) < 0 && dofs.prescribed_values()[d] != 0.0)
-          std::fprintf(out, "%lld, %d, %d, %.17g\n", static_cast<long long>(d / 3 + 1),
+          std::fprintf(out, "%lld, %d, %d, %.12e\n", static_cast<long long>(d / 3 + 1),
                        int(d % 3) + 1, int(d % 3) + 1, dofs.prescribed_values()[d]);
     }
     // OP=NEW: the previous step's forces are removed, not kept.
@@ -163,7 +165,7 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
     for (Index d = 0; d < dofs.dof_count(); ++d) {
       const double value = external_forces(d, k);
       if (value == 0.0 || dofs.equation(d) < 0) continue;  // forces on supports do nothing
-      std::fprintf(out, "%lld, %d, %.17g\n", static_cast<long long>(d / 3 + 1), int(d % 3) + 1,
+      std::fprintf(out, "%lld, %d, %.12e\n", static_cast<long long>(d / 3 + 1), int(d % 3) + 1,
                    value);
       any = true;
     }

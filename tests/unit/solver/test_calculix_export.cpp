@@ -184,7 +184,7 @@ TEST(CalculixExport, DeckHasKeywordsCountsAndOneStepPerLoadCase) {
     for (size_t at = b_start; at <= b_end; at = deck.find('\n', at) + 1) ++b_lines;
   }
   EXPECT_EQ(Index(b_lines), dofs.prescribed_count());
-  const std::string pulled = fmt::format("\n{}, 1, 1, 0.0001", model.mesh.node_set("x1").front() + 1);
+  const std::string pulled = fmt::format("\n{}, 1, 1, 1.000000000000e-04", model.mesh.node_set("x1").front() + 1);
   EXPECT_GT(deck.find(pulled), deck.find("*STEP"));
 }
 
