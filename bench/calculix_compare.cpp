@@ -158,6 +158,14 @@ double relative_difference(const fem::DisplacementField& ours, const fem::Displa
   return worst / scale;
 }
 
+// kinetofem's steps: assembly, CHOLMOD analyze, factorize, the last solve.
+std::string kinetofem_steps(const fem::LinearStaticAnalysis& analysis) {
+  const fem::CholmodStatistics& stats = analysis.solver_statistics();
+  return fmt::format("kf asm {:.2f} anal {:.2f} fact {:.2f} solve {:.2f} s ({} rhs)",
+                     analysis.timings().assembly_seconds, stats.analyze_seconds,
+                     stats.factorize_seconds, stats.last_solve_seconds, stats.last_solve_rhs);
+}
+
 struct Row {
   std::string model, kind, note;
   long long dofs = 0;
@@ -243,7 +251,8 @@ void compare(ElementType type, long long target_dofs, const Options& options, co
     row.dvm_away = worst_away / vm_max;
     row.vm_kf = vm_max;
     row.vm_ccx = ccx_max;
-    row.note = fmt::format("deck {:.1f} s; {}", deck_s, ccx_solver_note(dir / (job + ".log")));
+    row.note = fmt::format("{}; deck {:.1f} s; {}", kinetofem_steps(analysis), deck_s,
+                           ccx_solver_note(dir / (job + ".log")));
     print_row(row);
     fs::remove(dir / (job + ".frd"));
     fs::remove(dir / (job + ".dat"));
@@ -285,7 +294,8 @@ void compare(ElementType type, long long target_dofs, const Options& options, co
   for (int k = 0; k < ccx_steps; ++k)
     row.du = std::max(row.du, relative_difference(u[size_t(k)], theirs[size_t(k)],
                                                   u[size_t(k)].cwiseAbs().maxCoeff()));
-  row.note = fmt::format("deck {:.1f} s; ccx ran {} steps in {:.2f} s", deck_s, ccx_steps, ccx_k_s);
+  row.note = fmt::format("{}; deck {:.1f} s; ccx ran {} steps in {:.2f} s",
+                         kinetofem_steps(analysis), deck_s, ccx_steps, ccx_k_s);
   if (extrapolate) {
     // One step alone, for the fixed cost (reading the deck, set-up).
     const std::string job1 = job + "_1";

@@ -239,8 +239,8 @@ std::vector<CheckRow> spec6_gripper(const CheckContext&) {
   const auto dims = km::gripper_dimensions_from_offset(0.050, 1.1, 0.82);
   rows.push_back(compare_absolute("design example: connecting rod l = e / gamma", "SPEC §6, l = 60.98 mm", "mm", 60.98,
                                   dims.l_m / kMm, 0.005, "half a unit of the printed digit"));
-  rows.push_back(compare_absolute("design example: crank r = sigma l", "SPEC §6, r = 67 mm", "mm", 67.0, dims.r_m / kMm,
-                                  0.5, "printed to the mm: half a unit"));
+  rows.push_back(compare_absolute("design example: crank r = sigma l", "SPEC §6, r = 67 mm", "mm", 67.0,
+                                  dims.r_m / kMm, 0.5, "printed to the mm: half a unit"));
   // h = 2 r |sin 163 - sin 139|: printed 0.728 r from 3-digit sines (+-0.002).
   rows.push_back(compare_absolute("jaw travel h / r", "SPEC §6, h = 0.728 r", "1", 0.728,
                                   km::gripper_jaw_travel_m(1.0, 139 * kDeg, 163 * kDeg), 0.002,

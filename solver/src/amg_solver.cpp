@@ -300,23 +300,10 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
   HYPRE_IJVectorGetObject(m.x_ij, &object);
   m.x = static_cast<HYPRE_ParVector>(object);
 
-  if (std::getenv("AMG_CHECK")) {
-    Eigen::VectorXd xf = Eigen::VectorXd::Random(K.rows());
-    Eigen::VectorXd yf = K.selfadjointView<Eigen::Upper>() * xf;
-    Eigen::VectorXd xfull = Eigen::VectorXd::Zero(n_dof), yfull(n_dof);
-    for (Index d = 0; d < n_dof; ++d) if (m.equation[size_t(d)] >= 0) xfull[d] = xf[m.equation[size_t(d)]];
-    m.set_vector(m.b_ij, xfull.data());
-    HYPRE_ParCSRMatrixMatvec(1.0, m.A, m.b, 0.0, m.x);
-    std::vector<HYPRE_BigInt> rr(static_cast<size_t>(n_dof)); std::iota(rr.begin(), rr.end(), 0);
-    HYPRE_IJVectorGetValues(m.x_ij, HYPRE_Int(n_dof), rr.data(), yfull.data());
-    double err = 0; for (Index d = 0; d < n_dof; ++d) if (m.equation[size_t(d)] >= 0) err = std::max(err, std::abs(yfull[d] - yf[m.equation[size_t(d)]]));
-    fmt::print("AMG_CHECK matvec max err {:.3e} of max {:.3e}\n", err, yf.cwiseAbs().maxCoeff());
-    m.set_vector(m.b_ij, zero.data()); m.set_vector(m.x_ij, zero.data());
-  }
   // BoomerAMG for 3D elasticity (see the header): systems AMG with nodal
   // coarsening, interpolation augmented by the rotations.
   check_hypre(HYPRE_BoomerAMGCreate(&m.amg), "HYPRE_BoomerAMGCreate");
-  HYPRE_BoomerAMGSetPrintLevel(m.amg, std::getenv("AMG_PRINT") ? 1 : (options_.hypre_print_level >= 1 ? 1 : 0));
+  HYPRE_BoomerAMGSetPrintLevel(m.amg, options_.hypre_print_level >= 1 ? 1 : 0);
   HYPRE_BoomerAMGSetMaxIter(m.amg, 1);  // one V-cycle per preconditioner application
   HYPRE_BoomerAMGSetTol(m.amg, 0.0);
   HYPRE_BoomerAMGSetMaxLevels(m.amg, options_.max_levels);
@@ -327,14 +314,10 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
   HYPRE_BoomerAMGSetRelaxType(m.amg, 8);     // l1-scaled symmetric Gauss-Seidel (SPD for PCG)
   HYPRE_BoomerAMGSetNumSweeps(m.amg, 1);
   HYPRE_BoomerAMGSetStrongThreshold(m.amg, options_.strong_threshold);
-  auto dbg = [](const char* name, int def) { const char* v = std::getenv(name); return v ? std::atoi(v) : def; };
-  if (dbg("AMG_SYS", 1)) HYPRE_BoomerAMGSetNumFunctions(m.amg, 3);
-  if (dbg("AMG_NODAL", 4)) HYPRE_BoomerAMGSetNodal(m.amg, dbg("AMG_NODAL", 4));      // row-sum norm of the 3 x 3 nodal blocks
-  if (dbg("AMG_NODALDIAG", 1)) HYPRE_BoomerAMGSetNodalDiag(m.amg, 1);
-  HYPRE_BoomerAMGSetRelaxType(m.amg, dbg("AMG_RELAX", 8));
-  HYPRE_BoomerAMGSetCoarsenType(m.amg, dbg("AMG_COARSEN", 10));
-  HYPRE_BoomerAMGSetInterpType(m.amg, dbg("AMG_INTERP", 6));
-  if (options_.rigid_body_modes && dbg("AMG_RBM", 1)) {
+  HYPRE_BoomerAMGSetNumFunctions(m.amg, 3);
+  HYPRE_BoomerAMGSetNodal(m.amg, 4);  // row-sum norm of the 3 x 3 nodal blocks
+  HYPRE_BoomerAMGSetNodalDiag(m.amg, 1);
+  if (options_.rigid_body_modes) {
     const Eigen::MatrixXd all_modes = rigid_body_modes(nodes);
     for (int k = 3; k < 6; ++k) {  // the rotations (translations: see the header)
       Eigen::VectorXd mode = all_modes.col(k);
@@ -344,10 +327,9 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
       HYPRE_IJVectorGetObject(v, &object);
       m.modes.push_back(static_cast<HYPRE_ParVector>(object));
     }
-    HYPRE_BoomerAMGSetInterpVecVariant(m.amg, dbg("AMG_VAR", 2));  // GM variant 2
-    HYPRE_BoomerAMGSetInterpVecQMax(m.amg, dbg("AMG_QMAX", 4));
-    HYPRE_BoomerAMGSetSmoothInterpVectors(m.amg, dbg("AMG_SMOOTHV", 1));
-    HYPRE_BoomerAMGSetInterpRefine(m.amg, dbg("AMG_REFINE", 0));
+    HYPRE_BoomerAMGSetInterpVecVariant(m.amg, 2);  // GM variant 2
+    HYPRE_BoomerAMGSetInterpVecQMax(m.amg, 4);
+    HYPRE_BoomerAMGSetSmoothInterpVectors(m.amg, 1);
     HYPRE_BoomerAMGSetInterpVectors(m.amg, HYPRE_Int(m.modes.size()), m.modes.data());
   }
 
@@ -355,13 +337,30 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
   HYPRE_PCGSetTol(m.pcg, options_.relative_tolerance);
   HYPRE_PCGSetAbsoluteTol(m.pcg, 0.0);
   HYPRE_PCGSetMaxIter(m.pcg, options_.max_iterations);
-  HYPRE_PCGSetTwoNorm(m.pcg, dbg("AMG_TWONORM", 0));             // ||r||_2 / ||b||_2, not the preconditioned norm
+  // Stopping test in the preconditioner's norm, (r, C r) <= tol^2 (b, C b):
+  // with C ~ K^-1 an energy-like norm. The 2-norm residual cannot go reliably
+  // below ~1e-10 in double precision here (even CHOLMOD's exact solution
+  // leaves ||K x - b|| / ||b|| ~ 1e-10 on a 20k-DoF cantilever).
+  HYPRE_PCGSetTwoNorm(m.pcg, 0);             // ||r||_2 / ||b||_2, not the preconditioned norm
   HYPRE_PCGSetRecomputeResidual(m.pcg, 1);   // confirm convergence with the true residual
-  HYPRE_PCGSetPrintLevel(m.pcg, std::getenv("AMG_PCGPRINT") ? 2 : (options_.hypre_print_level >= 3 ? 2 : 0));
+  HYPRE_PCGSetPrintLevel(m.pcg, options_.hypre_print_level >= 3 ? 2 : 0);
   HYPRE_PCGSetLogging(m.pcg, 1);
   check_hypre(HYPRE_ParCSRPCGSetPrecond(m.pcg, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, m.amg),
               "HYPRE_ParCSRPCGSetPrecond");
-  { HYPRE_Int code = HYPRE_ParCSRPCGSetup(m.pcg, m.A, m.b, m.x); if (std::getenv("AMG_IGNORE") && code) { fmt::print("ignoring setup error {}\n", int(code)); HYPRE_ClearAllErrors(); code = 0; } check_hypre(code, "HYPRE_ParCSRPCGSetup (BoomerAMG set-up)"); }
+  HYPRE_Int setup_code = HYPRE_ParCSRPCGSetup(m.pcg, m.A, m.b, m.x);
+  if (setup_code != 0 && options_.rigid_body_modes && (setup_code & HYPRE_ERROR_ARG) &&
+      hypre_ParAMGDataNumLevels(static_cast<hypre_ParAMGData*>(static_cast<void*>(m.amg))) > 1) {
+    // hypre 2.26 leaves an argument-error flag from inside the GM
+    // interpolation on some meshes although the hierarchy is complete; the
+    // solve is still judged by PCG's convergence and the residual check.
+    if (log_ && m.rank == 0)
+      log_->info("  AMG set-up: hypre flagged an argument error in the rigid-body-mode "
+                 "interpolation (code {}); hierarchy complete, continuing",
+                 int(setup_code));
+    HYPRE_ClearAllErrors();
+    setup_code = 0;
+  }
+  check_hypre(setup_code, "HYPRE_ParCSRPCGSetup (BoomerAMG set-up)");
 
   // Hierarchy summary.
   auto* amg_data = static_cast<hypre_ParAMGData*>(static_cast<void*>(m.amg));
@@ -384,10 +383,10 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
   stats_.ranks = m.size;
   stats_.setup_seconds = clock.seconds();
   if (log_ && m.rank == 0)
-    log_->info("  AMG set-up (hypre BoomerAMG, {} rigid-body rotations, {} rank{}): {} equations "
-               "({} rows with supports), nnz {} , {} levels, operator complexity {:.2f}, {:.2f} s",
-               m.modes.size(), m.size, m.size == 1 ? "" : "s", stats_.equations,
-               stats_.system_rows, stats_.matrix_nonzeros, stats_.levels,
+    log_->info("  AMG set-up (hypre BoomerAMG, nodal systems AMG{}, {} rank{}): {} equations "
+               "({} rows with supports), nnz {}, {} levels, operator complexity {:.2f}, {:.2f} s",
+               m.modes.empty() ? "" : " + 3 rigid-body rotations", m.size, m.size == 1 ? "" : "s",
+               stats_.equations, stats_.system_rows, stats_.matrix_nonzeros, stats_.levels,
                stats_.operator_complexity, stats_.setup_seconds);
 }
 
@@ -441,14 +440,14 @@ Eigen::MatrixXd AmgSolver::solve(const Eigen::MatrixXd& rhs) {
       const Index eq = m.equation[size_t(d)];
       if (eq >= 0) X(eq, k) = full[d];
     }
-    // Independent check with the assembled K_ff: the true residual, which
-    // hypre's recomputed residual should match up to round-off.
+    // Independent check with the assembled K_ff: the true 2-norm residual,
+    // held to the same bound as the direct solver's (CholmodOptions).
     const Eigen::VectorXd residual = K.selfadjointView<Eigen::Upper>() * X.col(k) - rhs.col(k);
     const double relative = residual.norm() / b_norm;
-    require(std::isfinite(relative) && relative <= 1e-8,
+    require(std::isfinite(relative) && relative <= options_.max_relative_residual,
             "AMG-preconditioned CG: right-hand side {} of {} ended with relative residual {:.3g} "
-            "after {} iterations, above the tolerance {:.3g}",
-            k, cases, relative, int(iterations), options_.relative_tolerance);
+            "after {} iterations, above the {:.3g} allowed",
+            k, cases, relative, int(iterations), options_.max_relative_residual);
     stats_.iterations[size_t(k)] = int(iterations);
     stats_.relative_residuals[size_t(k)] = relative;
     stats_.solve_seconds[size_t(k)] = clock.seconds();
