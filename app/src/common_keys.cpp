@@ -32,6 +32,41 @@ fem::IsotropicMaterial read_material(const CaseFile& c) {
   return material;
 }
 
+std::vector<KeySpec> solver_keys() {
+  using Type = KeySpec::Type;
+  const fem::AmgOptions amg;
+  return {
+      {.path = "solver.method", .type = Type::String, .default_text = "auto", .allowed = {"auto", "direct", "iterative"},
+       .doc = "linear solver of the FE solves: 'direct' (CHOLMOD Cholesky), 'iterative' (CG with algebraic multigrid, "
+              "hypre BoomerAMG), 'auto' (direct unless the symbolic analysis predicts a factor above max_factor_gb)"},
+      {.path = "solver.ordering", .type = Type::String, .default_text = "metis", .allowed = {"metis", "amd", "best"},
+       .doc = "fill-reducing ordering of the Cholesky factorization"},
+      {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
+       .doc = "memory allowed for a Cholesky factor; 0 = 80 % of physical memory. Above it: 'direct' stops with an "
+              "error before the numeric factorization, 'auto' switches to 'iterative'"},
+      {.path = "solver.pcg_tolerance", .type = Type::Number, .default_number = amg.relative_tolerance, .min = 1e-14,
+       .max = 1e-2, .doc = "iterative solver: relative tolerance of CG in the preconditioner's norm"},
+      {.path = "solver.pcg_max_iterations", .type = Type::Integer, .default_number = double(amg.max_iterations),
+       .min = 1, .max = 1000000, .doc = "iterative solver: CG iterations allowed per right-hand side"},
+  };
+}
+
+fem::StaticSolverOptions read_solver_options(const CaseFile& c) {
+  fem::StaticSolverOptions options;
+  const std::string method = c.text_value("solver.method");
+  options.method = method == "direct"      ? fem::LinearSolverMethod::Direct
+                   : method == "iterative" ? fem::LinearSolverMethod::Iterative
+                                           : fem::LinearSolverMethod::Auto;
+  const std::string ordering = c.text_value("solver.ordering");
+  options.direct.ordering = ordering == "amd"    ? fem::CholmodOptions::Ordering::Amd
+                            : ordering == "best" ? fem::CholmodOptions::Ordering::Best
+                                                 : fem::CholmodOptions::Ordering::Metis;
+  options.direct.max_factor_bytes = c.number("solver.max_factor_gb") * 1e9;
+  options.iterative.relative_tolerance = c.number("solver.pcg_tolerance");
+  options.iterative.max_iterations = int(c.integer("solver.pcg_max_iterations"));
+  return options;
+}
+
 std::vector<KeySpec> sweep_keys() {
   using Type = KeySpec::Type;
   return {
@@ -44,8 +79,9 @@ std::vector<KeySpec> sweep_keys() {
   };
 }
 
-std::vector<KeySpec> with_material_and_sweep(std::vector<KeySpec> keys) {
+std::vector<KeySpec> with_common_keys(std::vector<KeySpec> keys) {
   for (auto&& k : material_keys()) keys.push_back(std::move(k));
+  for (auto&& k : solver_keys()) keys.push_back(std::move(k));
   for (auto&& k : sweep_keys()) keys.push_back(std::move(k));
   return keys;
 }

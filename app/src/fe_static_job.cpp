@@ -22,7 +22,7 @@ constexpr double kMm = 1e-3, kMpa = 1e6;
 const std::vector<KeySpec>& fe_static_schema() {
   static const meshes::LeverDimensions lever;
   static const fem::IsotropicMaterial steel;
-  static const std::vector<KeySpec> schema = with_material_and_sweep({
+  static const std::vector<KeySpec> schema = with_common_keys({
       {.path = "case.name", .type = Type::String, .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
       {.path = "case.type", .type = Type::String, .allowed = {"fe_static"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text, copied into the results"},
@@ -65,10 +65,6 @@ const std::vector<KeySpec>& fe_static_schema() {
        .doc = "pressure, positive pushing into the body", .required = true},
       {.path = "gravity.acceleration_m_s2", .type = Type::Vector3, .unit = "m/s^2", .default_number = 0.0,
        .doc = "gravitational acceleration vector (e.g. [0, 0, -9.81])"},
-      {.path = "solver.ordering", .type = Type::String, .default_text = "metis", .allowed = {"metis", "amd", "best"},
-       .doc = "fill-reducing ordering of the Cholesky factorization"},
-      {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
-       .doc = "memory allowed for the factor; 0 = 80 % of physical memory"},
   });
   return schema;
 }
@@ -183,12 +179,7 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
     load.pressures.push_back({set, c.number("pressure[].pressure_mpa", k)});
   }
 
-  fem::CholmodOptions solver_options;
-  const std::string ordering = c.text_value("solver.ordering");
-  solver_options.ordering = ordering == "amd"    ? fem::CholmodOptions::Ordering::Amd
-                            : ordering == "best" ? fem::CholmodOptions::Ordering::Best
-                                                 : fem::CholmodOptions::Ordering::Metis;
-  solver_options.max_factor_bytes = c.number("solver.max_factor_gb") * 1e9;
+  const fem::StaticSolverOptions solver_options = read_solver_options(c);
 
   log.info("solving");
   fem::LinearStaticAnalysis analysis(model, log, solver_options);
@@ -234,18 +225,17 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
 
   const auto vm_at = model.mesh.nodes.row(vm_node) / kMm;
   const auto u_at = model.mesh.nodes.row(u_node) / kMm;
-  const auto& st = analysis.solver_statistics();
   std::printf(
       "\nSummary of '%s'\n"
       "  mesh                 %ld nodes, %ld elements, %ld DoFs\n"
-      "  solver               nnz(L) %.4g, %.3g flops, factorization %.2f s (%.1f GFLOP/s)\n"
+      "  solver               %s\n"
       "  max von Mises        %.3f MPa at node %ld (%.1f, %.1f, %.1f) mm\n"
       "  max displacement     %.5f mm at node %ld (%.1f, %.1f, %.1f) mm\n"
       "  applied load         (%.4g, %.4g, %.4g) N; reactions balance it to %.1e (relative)\n"
       "  results              %s (+ .xdmf for ParaView)\n"
       "  wall time            %.2f s\n",
       name.c_str(), summary.node_count, summary.element_count, summary.dof_count,
-      st.factor_nonzeros, st.factorization_flops, st.factorize_seconds, st.factorize_gflops(),
+      analysis.solver_summary().c_str(),
       summary.max_von_mises_pa / kMpa, long(vm_node), vm_at[0], vm_at[1], vm_at[2],
       summary.max_displacement_m / kMm, long(u_node), u_at[0], u_at[1], u_at[2], load_sum[0],
       load_sum[1], load_sum[2], summary.reaction_balance, summary.results_file.string().c_str(),

@@ -42,7 +42,7 @@ const std::vector<KeySpec>& manipulator_schema() {
   static const meshes::LeverDimensions lever;
   static const meshes::ArmDimensions arm;
   static const fem::IsotropicMaterial steel;
-  static const std::vector<KeySpec> schema = with_material_and_sweep({
+  static const std::vector<KeySpec> schema = with_common_keys({
       {.path = "case.name", .type = Type::String, .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
       {.path = "case.type", .type = Type::String, .allowed = {"manipulator"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text"},
@@ -81,7 +81,6 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "static_study.enabled", .type = Type::Boolean, .default_number = 1, .doc = "also solve the static pose study (gravity and payload, at rest)"},
       {.path = "static_study.dphi_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0, .min = -180, .max = 180,
        .doc = "lever angle of the static pose from the design position"},
-      {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0, .doc = "memory allowed for a factor; 0 = 80 % of physical memory"},
       {.path = "solver.block_size", .type = Type::Integer, .default_number = 32, .min = 1, .max = 100000, .doc = "right-hand sides per block solve"},
   });
   return schema;
@@ -305,7 +304,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
 
   loads::LinkStressOptions stress_options;
   stress_options.block_size = int(c.integer("solver.block_size"));
-  stress_options.solver.max_factor_bytes = c.number("solver.max_factor_gb") * 1e9;
+  stress_options.solver = read_solver_options(c);
   stress_options.envelope_steps = motion.frames.size();
   for (auto& link : links) {
     link.definition.model = &link.model;
@@ -351,6 +350,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     ls.factor_bytes = env.solver.factor_bytes;
     ls.factorization_flops = env.solver.factorization_flops;
     ls.right_hand_sides = long(frames.size());
+    ls.iterative_solver = env.iterative_solver;
+    ls.solver_summary = env.solver_summary;
     const auto at = link.model.mesh.nodes.row(env.peak_von_mises_node) / kMm;
     log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
              "loads in equilibrium to {:.1e}, support reactions {:.1e}",
@@ -406,6 +407,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     std::printf("  %-8s %9ld %14.3f %10.4f %14.5f %10.4f %12.3f %12.5f\n", ls.link.c_str(), ls.dofs,
                 ls.peak_von_mises_pa / kMpa, ls.peak_von_mises_time_s, ls.peak_displacement_m / kMm,
                 ls.peak_displacement_time_s, ls.static_von_mises_pa / kMpa, ls.static_displacement_m / kMm);
+  for (const auto& ls : summary.links)
+    std::printf("  %-8s solver: %s\n", ls.link.c_str(), ls.solver_summary.c_str());
   std::printf("  drive torque: max |M| %.2f N m", summary.max_drive_torque_nm);
   if (chain) std::printf("; chain tension %.1f .. %.1f N", summary.min_chain_tension_n, summary.max_chain_tension_n);
   std::printf("\n\n  Comparison with the published analysis (SPEC §3; the published load case is static: the casting's weight)\n");

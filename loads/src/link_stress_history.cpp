@@ -89,6 +89,8 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
   env.peak_displacement_m = env.max_displacement_m.maxCoeff(&env.peak_displacement_node);
   env.peak_displacement_step = env.max_displacement_step[env.peak_displacement_node];
   env.solver = analysis.solver_statistics();
+  env.iterative_solver = analysis.uses_iterative_solver();
+  env.solver_summary = analysis.solver_summary();
   return env;
 }
 

@@ -90,6 +90,20 @@ std::vector<DisplacementField> LinearStaticAnalysis::solve(const std::vector<Loa
   return solve_forces(F);
 }
 
+std::string LinearStaticAnalysis::solver_summary() const {
+  if (amg_) {
+    const AmgStatistics& st = amg_->statistics();
+    return fmt::format("AMG-PCG (hypre): {} levels, operator complexity {:.2f}, set-up {:.2f} s, "
+                       "{} right-hand sides, at most {} iterations, {:.2f} s of solves",
+                       st.levels, st.operator_complexity, st.setup_seconds, st.total_rhs,
+                       st.max_iterations(), st.total_solve_seconds);
+  }
+  const CholmodStatistics& st = solver_.statistics();
+  return fmt::format("CHOLMOD: nnz(L) {:.4g}, {:.3g} flops, factorization {:.2f} s ({:.1f} GFLOP/s)",
+                     st.factor_nonzeros, st.factorization_flops, st.factorize_seconds,
+                     st.factorize_gflops());
+}
+
 std::vector<DisplacementField> LinearStaticAnalysis::solve_forces(
     const Eigen::MatrixXd& external_forces) {
   require(external_forces.rows() == dofs_.dof_count(),

@@ -193,7 +193,7 @@ add("lever_chain_inconsistent_dimensions", {"case.toml": sub(MAN, "c_mm = 350.0"
 add("rigid_body_modes_left", {"case.toml": sub(FE, 'fixed = ["x", "y", "z"]', 'fixed = ["x"]')})
 add("no_supports", {"case.toml": sub(FE, '[[support]]\nset = "bore_A0"\nfixed = ["x", "y", "z"]\n', "")})
 add("support_set_not_in_mesh", {"case.toml": sub(FE, 'set = "bore_A0"', 'set = "bore_B"')})
-add("factor_exceeds_memory_limit", {"case.toml": FE + "\n[solver]\nmax_factor_gb = 0.001\n"})
+add("factor_exceeds_memory_limit", {"case.toml": FE + "\n[solver]\nmethod = \"direct\"\nmax_factor_gb = 0.001\n"})
 # --- meshes
 add("msh_missing", {"case.toml": CUBE})
 add("msh_empty", {"case.toml": CUBE, "cube.msh": ""})

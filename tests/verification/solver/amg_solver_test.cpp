@@ -69,11 +69,11 @@ void expect_iterative_matches_direct(const FeModel& model, bool rotations = fals
   const AmgStatistics& stats = *iterative.iterative_statistics();
   for (size_t k = 0; k < cases.size(); ++k) {
     // Reference: the CHOLMOD solution of the same K_ff and loads; required:
-    // 1e-6 of the largest displacement (the criterion) with the PCG
-    // tolerance 1e-10 in the preconditioner's (energy-like) norm.
+    // 1e-6 of the largest displacement (the criterion) with the
+    // default PCG tolerance (1e-8 in the preconditioner's, energy-like, norm).
     EXPECT_LT(max_relative_difference(u_iterative[k], u_direct[k]), 1e-6) << cases[k].name;
-    // The 2-norm residual, recomputed: the direct solver's own bound.
-    EXPECT_LE(stats.relative_residuals[k], 1e-8) << cases[k].name;
+    // The 2-norm residual, recomputed: AmgOptions::max_relative_residual.
+    EXPECT_LE(stats.relative_residuals[k], 1e-6) << cases[k].name;
     // Multigrid with the rigid-body modes: the iteration count stays small.
     EXPECT_LT(stats.iterations[k], 200) << cases[k].name;
     std::printf("  %s: %lld free DoFs, %d PCG iterations, 2-norm residual %.2e, max|u_amg - u_chol| / "
@@ -143,7 +143,7 @@ TEST(AmgSolver, NonConvergenceIsAnErrorNamingIterationsAndResidual) {
   LinearStaticAnalysis analysis(model, log, options);
   try {
     analysis.solve(load_cases());
-    ADD_FAILURE() << "two PCG iterations reached the 1e-10 tolerance";
+    ADD_FAILURE() << "two PCG iterations reached the 1e-8 tolerance";
   } catch (const Error& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("did not converge"), std::string::npos) << message;

@@ -1,10 +1,12 @@
 #pragma once
 // Case-file keys shared by several case types, declared once: the material
-// of the FE parts and the [sweep] table read by `kinetofem batch`.
+// of the FE parts, the linear solver of the FE solves and the [sweep] table
+// read by `kinetofem batch`.
 #include <vector>
 
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/solver/material.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
 
 namespace kinetofem::app {
 
@@ -12,10 +14,16 @@ namespace kinetofem::app {
 std::vector<KeySpec> material_keys();
 fem::IsotropicMaterial read_material(const CaseFile& case_file);
 
+// [solver]: method (auto | direct | iterative), ordering, max_factor_gb,
+// pcg_tolerance, pcg_max_iterations. `auto` takes the iterative path only when
+// CHOLMOD's symbolic analysis predicts a factor above max_factor_gb.
+std::vector<KeySpec> solver_keys();
+fem::StaticSolverOptions read_solver_options(const CaseFile& case_file);
+
 // [sweep]: parameters, values, linspace (kinetofem run ignores them).
 std::vector<KeySpec> sweep_keys();
 
-// `keys` followed by the material and sweep keys.
-std::vector<KeySpec> with_material_and_sweep(std::vector<KeySpec> keys);
+// `keys` followed by the material, solver and sweep keys.
+std::vector<KeySpec> with_common_keys(std::vector<KeySpec> keys);
 
 }  // namespace kinetofem::app

@@ -26,6 +26,8 @@ struct LinkSummary {
   double assembly_seconds = 0, recovery_seconds = 0, analyze_seconds = 0;
   double factor_nonzeros = 0, factor_bytes = 0, factorization_flops = 0;
   long right_hand_sides = 0;
+  bool iterative_solver = false;  // AMG-PCG instead of CHOLMOD (factor too large, or asked for)
+  std::string solver_summary;
 };
 
 struct ManipulatorSummary {

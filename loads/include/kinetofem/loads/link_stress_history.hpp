@@ -17,11 +17,12 @@
 // of the link's total load (sum of the nodal force magnitudes) it is an
 // Error naming link and time.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/loads/link_loads.hpp"
-#include "kinetofem/solver/cholmod_solver.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
 
 namespace kinetofem::loads {
@@ -33,7 +34,7 @@ struct LinkStressOptions {
   // a static pose study solved in the same block, go to the callback only);
   // 0 = all frames.
   std::size_t envelope_steps = 0;
-  fem::CholmodOptions solver;
+  fem::StaticSolverOptions solver;  // direct, iterative, or chosen by the factor size
 };
 
 struct LinkEnvelope {
@@ -50,7 +51,9 @@ struct LinkEnvelope {
   int peak_displacement_step = 0;
   double worst_equilibrium_residual = 0.0;
   double worst_support_reaction = 0.0;  // relative to the total load (sum of |f_i|)
-  fem::CholmodStatistics solver;
+  fem::CholmodStatistics solver;  // on the iterative path: the symbolic analysis only, if any
+  bool iterative_solver = false;
+  std::string solver_summary;     // fem::LinearStaticAnalysis::solver_summary()
   double assembly_seconds = 0.0, solve_seconds = 0.0, recovery_seconds = 0.0;
 };
 

@@ -11,6 +11,7 @@
 // iterative path only when the predicted factor exceeds max_factor_bytes,
 // printing the decision and why.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "kinetofem/core/log.hpp"
@@ -69,6 +70,9 @@ class LinearStaticAnalysis {
   // The AMG-PCG statistics, or nullptr on the direct path.
   const AmgStatistics* iterative_statistics() const { return amg_ ? &amg_->statistics() : nullptr; }
   const StaticTimings& timings() const { return timings_; }
+  // One line on the linear solver for summaries: CHOLMOD's nnz(L), flops and
+  // factorization time and rate, or the AMG hierarchy and the PCG iterations so far.
+  std::string solver_summary() const;
 
  private:
   const FeModel& model_;
