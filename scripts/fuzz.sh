@@ -1,22 +1,21 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (clang, KINETOFEM_BUILD_FUZZ=ON, in build-fuzz/)
-# and runs each for N seconds (default 60) on a copy of its seed corpus
-# fuzz/corpus/<target>/; new inputs go to build-fuzz/corpus/<target>/,
-# crashes to build-fuzz/crashes/<target>/ (crash-<sha1>: rerun one with
-# build-fuzz/fuzz/fuzz_<target> FILE). Exit status non-zero if any target crashed.
+# Builds the libFuzzer targets in the instrumented tree shared with the
+# sanitizer stage (scripts/configure-instrumented.sh, build-asan/: clang,
+# ASan + UBSan, coverage) and runs each for N seconds (default 60) on a copy of
+# its seed corpus fuzz/corpus/<target>/; new inputs go to
+# $BUILD_DIR/corpus/<target>/, crashes to $BUILD_DIR/crashes/<target>/
+# (crash-<sha1>: rerun one with $BUILD_DIR/fuzz/fuzz_<target> FILE). Exit
+# status non-zero if any target crashed.
 #   usage: bash scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: case_file read_msh)
-#   KINETOFEM_JOBS   parallel build jobs (default: nproc); BUILD_DIR (default: build-fuzz)
+#   KINETOFEM_JOBS   parallel build jobs (default: nproc); BUILD_DIR (default: build-asan)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
 ((${#targets[@]})) || targets=(case_file read_msh)
-build=${BUILD_DIR:-build-fuzz}
-command -v clang++ > /dev/null || { echo "fuzz.sh: needs clang++ (apt-get install clang libclang-rt-14-dev)"; exit 2; }
-CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DKINETOFEM_BUILD_FUZZ=ON -DKINETOFEM_BUILD_TESTS=OFF -DKINETOFEM_BUILD_BENCH=OFF
-cmake --build "$build" -j "${KINETOFEM_JOBS:-$(nproc)}" --target "${targets[@]/#/fuzz_}"
+build=${BUILD_DIR:-build-asan}
+BUILD_DIR=$build bash scripts/configure-instrumented.sh "${targets[@]/#/fuzz_}"
 # allocator_may_return_null: a huge allocation (Gmsh trusting a count in a header)
 # throws std::bad_alloc as in a normal build, which read_msh reports as an Error.
 export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1:allocator_may_return_null=1"

@@ -16,6 +16,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   libhypre-dev
   libcairo2-dev
+  clang libclang-rt-14-dev   # libFuzzer: the fuzz stage of scripts/test.sh
 )
 
 missing=()

@@ -1,7 +1,36 @@
 #!/usr/bin/env bash
-# Set up, build, and run the test suite (everything except the 'large' label).
+# Set up, build, and run the whole test suite (everything but the 'large' label)
+# in three stages, each of which must pass:
+#   release     build/ (Release): ctest -LE large
+#   sanitizers  build-asan/ (AddressSanitizer + UndefinedBehaviorSanitizer):
+#               ctest -LE large again (scripts/test-sanitizers.sh)
+#   fuzz        the libFuzzer targets, FUZZ_SECONDS each (default 30), on their
+#               seed corpora (scripts/fuzz.sh, in the same build-asan/ tree)
+# KINETOFEM_TEST_STAGES picks stages, e.g. KINETOFEM_TEST_STAGES=release for a
+# quick local run (default: "release sanitizers fuzz", which CI runs).
+# Extra arguments go to ctest in the release and sanitizer stages.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
-cd build
-ctest -LE large --output-on-failure -j "${KINETOFEM_JOBS:-$(nproc)}" "$@"
+stages=${KINETOFEM_TEST_STAGES:-release sanitizers fuzz}
+jobs=${KINETOFEM_JOBS:-$(nproc)}
+for stage in $stages; do
+  case $stage in
+    release | sanitizers | fuzz) ;;
+    *) echo "test.sh: unknown stage '$stage' in KINETOFEM_TEST_STAGES (use release, sanitizers, fuzz)"; exit 2 ;;
+  esac
+done
+timings=()
+for stage in $stages; do
+  start=$(date +%s)
+  echo "== test.sh: stage '$stage' =="
+  case $stage in
+    release)
+      bash scripts/build.sh
+      (cd build && ctest -LE large --output-on-failure -j "$jobs" "$@")
+      ;;
+    sanitizers) bash scripts/test-sanitizers.sh "$@" ;;
+    fuzz) bash scripts/fuzz.sh "${FUZZ_SECONDS:-30}" ;;
+  esac
+  timings+=("$stage $(($(date +%s) - start)) s")
+done
+echo "test.sh: all stages passed (${timings[*]})"

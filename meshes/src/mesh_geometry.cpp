@@ -139,9 +139,9 @@ fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOp
           "{}: geometry parameters can only be passed to .geo files", context);
 
   GmshSession session(options.verbose);
-  for (const auto& [name, value] : parameters)
-    session.call(context, fmt::format("setting parameter '{}'", name),
-                 [&] { gmsh::onelab::setNumber(name, {value}); });
+  for (const auto& parameter : parameters)
+    session.call(context, fmt::format("setting parameter '{}'", parameter.first),
+                 [&] { gmsh::onelab::setNumber(parameter.first, {parameter.second}); });
   if (is_geo) {
     session.call(context, "gmsh::open", [&] { gmsh::open(context); });
   } else {

@@ -1,10 +1,12 @@
 // Every bundled mechanism case (cases/mechanisms/*) runs through the case-type
-// registry, quickly, and writes its results file with /mechanism histories;
+// registry and writes its results file with /mechanism histories (its wall
+// time is printed, not checked: tests check correctness, bench/ times);
 // the SPEC case types return the published numbers (checked loosely here: the
 // SPEC verification of the models is in tests/verification/mechanisms).
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 
@@ -28,7 +30,7 @@ fs::path fresh_dir(const std::string& name) {
 
 class BundledMechanismCase : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(BundledMechanismCase, RunsQuicklyAndWritesHistories) {
+TEST_P(BundledMechanismCase, RunsAndWritesHistories) {
   const std::string name = GetParam();
   RunOptions options;
   options.case_path = fs::path("cases/mechanisms") / name / "case.toml";
@@ -37,7 +39,7 @@ TEST_P(BundledMechanismCase, RunsQuicklyAndWritesHistories) {
   const auto start = std::chrono::steady_clock::now();
   EXPECT_EQ(run_case(options), 0);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_LT(seconds, 2.0) << name;
+  std::printf("  %s: %.2f s\n", name.c_str(), seconds);
   const fs::path h5 = options.output_dir / (name + ".h5");
   ASSERT_TRUE(fs::exists(h5)) << h5;
   EXPECT_TRUE(fs::exists(options.output_dir / (name + ".xdmf")));
