@@ -95,7 +95,7 @@ int cells_for(ElementType type, long long target_dofs) {
   return best;
 }
 
-void run(ElementType type, long long target_dofs, int block_rhs, double dgemm) {
+void run(ElementType type, long long target_dofs, int block_rhs, double dgemm, const fem::CholmodOptions& cholmod) {
   const int n = cells_for(type, target_dofs);
   fem::Mesh mesh;
   {
@@ -127,7 +127,7 @@ void run(ElementType type, long long target_dofs, int block_rhs, double dgemm) {
   for (fem::Index d = 0; d < dofs.dof_count(); ++d)
     if (dofs.equation(d) >= 0) rhs.row(dofs.equation(d)) = f.row(d);
 
-  fem::CholmodSolver solver;
+  fem::CholmodSolver solver(cholmod);
   clock.restart();
   solver.analyze(K.free_free);
   const double analyze_s = clock.seconds();
@@ -167,6 +167,7 @@ int main(int argc, char** argv) {
     std::vector<long long> sizes;
     std::vector<ElementType> types = {ElementType::Hex20, ElementType::Tet10, ElementType::Hex8};
     int block_rhs = 20, dgemm_n = 4000;
+    fem::CholmodOptions cholmod;
     for (int i = 1; i < argc; ++i) {
       const std::string arg = argv[i];
       auto value = [&]() -> std::string {
@@ -185,9 +186,16 @@ int main(int argc, char** argv) {
         block_rhs = std::max(1, std::atoi(value().c_str()));
       } else if (arg == "--dgemm") {
         dgemm_n = std::max(100, std::atoi(value().c_str()));
+      } else if (arg == "--relax") {
+        // CHOLMOD's relaxed amalgamation: nrelax0,nrelax1,nrelax2:zrelax0,zrelax1,zrelax2
+        const std::string v = value();
+        require(std::sscanf(v.c_str(), "%d,%d,%d:%lf,%lf,%lf", &cholmod.relax_columns[0], &cholmod.relax_columns[1],
+                            &cholmod.relax_columns[2], &cholmod.relax_zero_fraction[0],
+                            &cholmod.relax_zero_fraction[1], &cholmod.relax_zero_fraction[2]) == 6,
+                "--relax {}: expected N0,N1,N2:Z0,Z1,Z2", v);
       } else if (arg == "-h" || arg == "--help") {
         std::printf("usage: fe_solve_scaling [DOFS ...] [--types hex20,tet10,hex8] [--rhs 20] "
-                    "[--dgemm 4000]\n");
+                    "[--dgemm 4000] [--relax N0,N1,N2:Z0,Z1,Z2]\n");
         return 0;
       } else {
         sizes.push_back(parse_dofs(arg));
@@ -197,15 +205,17 @@ int main(int argc, char** argv) {
 
     const double dgemm = dgemm_gflops(dgemm_n);
     std::printf("# fe_solve_scaling: cantilever 8:1:1, clamped, end shear; DGEMM %dx%d: %.1f "
-                "GFLOP/s; block of %d right-hand sides\n",
-                dgemm_n, dgemm_n, dgemm, block_rhs);
+                "GFLOP/s; block of %d right-hand sides; CHOLMOD relaxed amalgamation %d,%d,%d:%g,%g,%g\n",
+                dgemm_n, dgemm_n, dgemm, block_rhs, cholmod.relax_columns[0], cholmod.relax_columns[1],
+                cholmod.relax_columns[2], cholmod.relax_zero_fraction[0], cholmod.relax_zero_fraction[1],
+                cholmod.relax_zero_fraction[2]);
     std::printf("%-6s %4s %9s %8s %8s %8s %9s %9s %10s %10s %10s %7s %8s %8s %6s %6s\n", "type",
                 "n", "DoFs", "asm_s", "anal_s", "fact_s", "solve1_s", "blkRHS_s", "nnz(K)",
                 "nnz(L)", "flops", "GF/s", "stress_s", "dgemmGF", "ratio", "RSS_GB");
     for (long long target : sizes)
       for (ElementType type : types) {
         try {
-          run(type, target, block_rhs, dgemm);
+          run(type, target, block_rhs, dgemm, cholmod);
         } catch (const Error& error) {
           std::printf("%-6s ~%lld DoFs: skipped: %s\n", fem::name_of(type), target, error.what());
           std::fflush(stdout);

@@ -17,6 +17,7 @@ targets=("$@")
 build=${BUILD_DIR:-build-asan}
 BUILD_DIR=$build bash scripts/configure-instrumented.sh "${targets[@]/#/fuzz_}"
 # allocator_may_return_null: a huge allocation (Gmsh trusting a count in a header)
+# returns null from malloc, and the targets' operator new (fuzz/throwing_new.cpp)
 # throws std::bad_alloc as in a normal build, which read_msh reports as an Error.
 export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"

@@ -7,6 +7,7 @@
 #include <gmsh.h>
 
 #include "gmsh_model.hpp"
+#include "msh_structure.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/solver/assembly.hpp"
 
@@ -82,6 +83,7 @@ void check_physical_names(const std::filesystem::path& file) {
 fem::Mesh read_msh(const std::filesystem::path& file) {
   check_msh_file(file);
   check_physical_names(file);
+  detail::check_msh41_structure(file);
   const std::string context = file.string();
   GmshSession session;
   session.call(context, "gmsh::open", [&] { gmsh::open(context); });

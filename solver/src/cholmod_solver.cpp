@@ -108,6 +108,10 @@ CholmodSolver::CholmodSolver(CholmodOptions options, const Log* log)
       impl_->common.nmethods = 0;  // CHOLMOD's default strategy: AMD, then METIS if better
       break;
   }
+  for (int k = 0; k < 3; ++k) {
+    impl_->common.nrelax[k] = std::size_t(options_.relax_columns[k]);
+    impl_->common.zrelax[k] = options_.relax_zero_fraction[k];
+  }
 }
 
 CholmodSolver::~CholmodSolver() = default;

@@ -1,6 +1,9 @@
 // read_msh / write_msh: Gmsh-written files (ASCII and binary) read the same,
 // write/read round trips, Gmsh node ordering, and bad files.
 #include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <set>
 
 #include <gmsh.h>
@@ -243,6 +246,64 @@ TEST(ReadMsh, BadFilesThrowErrorNamingTheFile) {
     write_text(cut, bytes.substr(0, bytes.rfind("$EndElements") - 2));
     expect_error_naming(cut, "truncated");
   }
+}
+
+// Overwrites the 8-byte size_t at `offset` of a binary .msh.
+void poke_size_t(std::string& bytes, std::size_t offset, std::uint64_t value) {
+  std::memcpy(bytes.data() + offset, &value, sizeof value);
+}
+
+TEST(ReadMsh, CorruptCountsAndTagsAreRejectedBeforeGmshReadsThem) {
+  // Gmsh 4.8 trusts the file's counts and tags (fuzz findings: a SEGV for an
+  // element naming a missing node, a 2e18-byte allocation for a huge count);
+  // read_msh's structural check of MSH 4.1 must reject both kinds, naming
+  // the file and the section, in ASCII and binary.
+  TempDir dir;
+  write_text(dir / "box.geo", box_geo);
+  gmsh_mesh_and_write(dir / "box.geo", 3, 1, {{dir / "ascii.msh", false}, {dir / "binary.msh", true}});
+  const auto bytes_of = [&](const std::string& name) {
+    std::ifstream in(dir / name, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_NO_THROW(read_msh(dir / "ascii.msh"));
+  EXPECT_NO_THROW(read_msh(dir / "binary.msh"));
+
+  // Binary: the first node of the first element -> a tag the file lacks.
+  std::string binary = bytes_of("binary.msh");
+  const std::size_t elements = binary.find("$Elements\n") + std::strlen("$Elements\n");
+  std::string bad = binary;
+  poke_size_t(bad, elements + 4 * 8 + 3 * 4 + 8 + 8, 999999);
+  write_text(dir / "missing_node.msh", bad);
+  expect_error_naming(dir / "missing_node.msh", "$Elements: element");
+  expect_error_naming(dir / "missing_node.msh", "refers to node 999999, which the file does not hold");
+  // Binary: the number of nodes -> 2^60.
+  bad = binary;
+  poke_size_t(bad, binary.find("$Nodes\n") + std::strlen("$Nodes\n") + 8, std::uint64_t(1) << 60);
+  write_text(dir / "huge_count.msh", bad);
+  expect_error_naming(dir / "huge_count.msh", "$Nodes: the number of nodes = 1152921504606846976 is more than");
+
+  // ASCII: an element type kinetofem does not know; a node tag given twice.
+  std::string ascii = bytes_of("ascii.msh");
+  const std::size_t block = ascii.find('\n', ascii.find("$Elements\n") + 10) + 1;  // first block header
+  const std::size_t type_end = ascii.find(' ', ascii.find(' ', block) + 1);
+  const std::size_t type_start = ascii.find(' ', type_end + 1);
+  bad = ascii.substr(0, type_end) + " 99" + ascii.substr(type_start);
+  write_text(dir / "bad_type.msh", bad);
+  expect_error_naming(dir / "bad_type.msh", "element type 99, which kinetofem does not read");
+  const std::size_t nodes = ascii.find("$Nodes\n");
+  const std::size_t first_tag = ascii.find('\n', ascii.find('\n', nodes + 7) + 1) + 1;
+  const std::size_t first_tag_end = ascii.find('\n', first_tag);
+  const std::size_t second_tag_end = ascii.find('\n', first_tag_end + 1);
+  // Only when the first block holds two nodes (tags on consecutive lines).
+  ASSERT_EQ(ascii.substr(first_tag, first_tag_end - first_tag).find(' '), std::string::npos);
+  bad = ascii.substr(0, first_tag_end + 1) + ascii.substr(first_tag, first_tag_end - first_tag) +
+        ascii.substr(second_tag_end);
+  write_text(dir / "twice.msh", bad);
+  expect_error_naming(dir / "twice.msh", "$Nodes:");
+
+  // The fuzz findings themselves (tests/data/meshes/fuzz_findings/).
+  expect_error_naming("tests/data/meshes/fuzz_findings/gmsh_segv_element_names_missing_node.msh");
+  expect_error_naming("tests/data/meshes/fuzz_findings/gmsh_huge_entity_count.msh");
 }
 
 TEST(ReadMsh, PrismsAndSurfaceOnlyMeshesAreRejected) {

@@ -41,6 +41,13 @@ struct CholmodOptions {
   // Memory allowed for the numeric factor; analyze() throws when the
   // symbolic analysis predicts more. 0 = 80 % of the machine's physical memory.
   double max_factor_bytes = 0.0;
+  // Relaxed supernodal amalgamation (CHOLMOD's Common.nrelax / zrelax): two
+  // supernodes are merged when the merged one has fewer than relax_columns[k]
+  // columns and at most relax_zero_fraction[k] explicit zeros (k = 0, 1, 2
+  // for increasing sizes). Larger supernodes mean fewer, bigger dense BLAS
+  // calls at the price of some zeros. Defaults are CHOLMOD's own.
+  int relax_columns[3] = {4, 16, 48};
+  double relax_zero_fraction[3] = {0.8, 0.1, 0.05};
   double min_reciprocal_condition = 1e-13;  // below: treated as singular
   double max_relative_residual = 1e-8;      // above: the solve is an error
 };
