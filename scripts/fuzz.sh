@@ -7,6 +7,9 @@
 # (crash-<sha1>: rerun one with $BUILD_DIR/fuzz/fuzz_<target> FILE). Exit
 # status non-zero if any target crashed.
 #   usage: bash scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: case_file read_msh)
+#   FUZZ_RUNS=N   stop each target after N inputs instead (with FUZZ_SEED, default
+#                 1, the run is then the same on every machine: what CI uses, so
+#                 that a CI run cannot fail on a finding another run would miss)
 #   KINETOFEM_JOBS   parallel build jobs (default: nproc); BUILD_DIR (default: build-asan)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,8 +30,14 @@ for target in "${targets[@]}"; do
   crashes="$build/crashes/$target"
   mkdir -p "$corpus" "$crashes"
   cp -n fuzz/corpus/"$target"/* "$corpus"/ 2> /dev/null || true
-  echo "fuzz.sh: $target for $seconds s"
-  "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
+  if [[ -n ${FUZZ_RUNS:-} ]]; then
+    limit=(-runs="$FUZZ_RUNS" -seed="${FUZZ_SEED:-1}")
+    echo "fuzz.sh: $target for $FUZZ_RUNS inputs (seed ${FUZZ_SEED:-1})"
+  else
+    limit=(-max_total_time="$seconds")
+    echo "fuzz.sh: $target for $seconds s"
+  fi
+  "$build/fuzz/fuzz_$target" "${limit[@]}" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
     -artifact_prefix="$crashes/" -print_final_stats=1 "$corpus" 2>&1 | grep -v "^#[0-9]*.*\(NEW\|REDUCE\|pulse\)" || status=1
   if compgen -G "$crashes/*" > /dev/null; then
     echo "fuzz.sh: $target: findings in $crashes"; status=1

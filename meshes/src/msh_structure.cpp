@@ -260,7 +260,13 @@ void check_msh41_structure(const std::filesystem::path& file) {
   int file_type = -1, data_size = -1;
   require(std::sscanf(format.c_str(), "%15s %d %d", version, &file_type, &data_size) == 3,
           "{}: $MeshFormat: expected 'version file-type data-size', got '{}'", name, format);
-  if (std::string(version) != "4.1") return;  // other versions: Gmsh's own reader only
+  // Gmsh's readers of older versions crash on corrupt files too (MSH 2.2: a
+  // SEGV in GModel::_associateEntityWithMeshVertices, found by fuzzing), and
+  // the format is what Gmsh writes by default: read 4.1 only.
+  require(std::string(version) == "4.1",
+          "{}: MSH format version {}: kinetofem reads MSH 4.1 only (convert the file with "
+          "`gmsh {} -format msh41 -save -o NEW.msh`)",
+          name, version, name);
   require(file_type == 0 || file_type == 1, "{}: $MeshFormat: file type {} (must be 0, ASCII, or 1, binary)", name,
           file_type);
   const bool binary = file_type == 1;

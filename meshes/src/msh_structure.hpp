@@ -11,8 +11,8 @@
 //   - an element type kinetofem does not know, an entity dimension outside 0..3,
 //   - a bounding entity that $Entities does not declare,
 //   - a section that ends before its data or without its $End marker.
-// Other sections are skipped to their $End marker; files of another version
-// (e.g. MSH 2.2) are left to Gmsh.
+// Other sections are skipped to their $End marker. A file of another version
+// (e.g. MSH 2.2) is an error saying how to convert it.
 #include <filesystem>
 
 namespace kinetofem::meshes::detail {

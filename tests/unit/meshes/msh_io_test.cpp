@@ -304,6 +304,7 @@ TEST(ReadMsh, CorruptCountsAndTagsAreRejectedBeforeGmshReadsThem) {
   // The fuzz findings themselves (tests/data/meshes/fuzz_findings/).
   expect_error_naming("tests/data/meshes/fuzz_findings/gmsh_segv_element_names_missing_node.msh");
   expect_error_naming("tests/data/meshes/fuzz_findings/gmsh_huge_entity_count.msh");
+  expect_error_naming("tests/data/meshes/fuzz_findings/gmsh_segv_msh22.msh", "kinetofem reads MSH 4.1 only");
 }
 
 TEST(ReadMsh, PrismsAndSurfaceOnlyMeshesAreRejected) {
