@@ -94,9 +94,9 @@ std::string LinearStaticAnalysis::solver_summary() const {
   if (amg_) {
     const AmgStatistics& st = amg_->statistics();
     return fmt::format("AMG-PCG (hypre): {} levels, operator complexity {:.2f}, set-up {:.2f} s, "
-                       "{} right-hand sides, at most {} iterations, {:.2f} s of solves",
+                       "{} right-hand side{}, at most {} iterations, {:.2f} s of solves",
                        st.levels, st.operator_complexity, st.setup_seconds, st.total_rhs,
-                       st.max_iterations(), st.total_solve_seconds);
+                       st.total_rhs == 1 ? "" : "s", st.max_iterations(), st.total_solve_seconds);
   }
   const CholmodStatistics& st = solver_.statistics();
   return fmt::format("CHOLMOD: nnz(L) {:.4g}, {:.3g} flops, factorization {:.2f} s ({:.1f} GFLOP/s)",
