@@ -1,5 +1,6 @@
 #include "msh_structure.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cstdio>
@@ -127,11 +128,52 @@ class SectionReader {
   }
 };
 
+// The node tags a file holds: a bitmap over [min, max] when the tags are
+// dense (as Gmsh writes them), else a sorted list (a file may number its nodes
+// sparsely, and a bitmap over a range of 2^40 would not fit in memory).
+class NodeTags {
+ public:
+  void reset(std::int64_t min_tag, std::int64_t max_tag, std::uint64_t count) {
+    min_ = min_tag;
+    const std::uint64_t range = std::uint64_t(max_tag - min_tag) + 1;
+    dense_ = range <= 4 * count + 1024;
+    present_.assign(dense_ ? std::size_t(range) : 0, false);
+    sorted_.clear();
+    if (!dense_) sorted_.reserve(std::size_t(count));
+  }
+  // False when the tag was added before.
+  bool add(std::int64_t tag) {
+    if (!dense_) {
+      sorted_.push_back(tag);
+      return true;  // duplicates: see finish()
+    }
+    if (present_[std::size_t(tag - min_)]) return false;
+    present_[std::size_t(tag - min_)] = true;
+    return true;
+  }
+  // Sorts the sparse list; returns a tag given twice, or 0 (tags are >= 1).
+  std::int64_t finish() {
+    if (dense_) return 0;
+    std::sort(sorted_.begin(), sorted_.end());
+    const auto twice = std::adjacent_find(sorted_.begin(), sorted_.end());
+    return twice == sorted_.end() ? 0 : *twice;
+  }
+  bool contains(std::int64_t tag) const {
+    if (!dense_) return std::binary_search(sorted_.begin(), sorted_.end(), tag);
+    return tag >= min_ && std::uint64_t(tag - min_) < present_.size() && present_[std::size_t(tag - min_)];
+  }
+
+ private:
+  std::int64_t min_ = 0;
+  bool dense_ = true;
+  std::vector<bool> present_;
+  std::vector<std::int64_t> sorted_;
+};
+
 struct Structure {
   std::set<std::int64_t> entities[4];  // tags declared in $Entities, per dimension
   bool have_entities = false;
-  std::int64_t min_node = 0;
-  std::vector<bool> node_present;       // index tag - min_node
+  NodeTags nodes;
 };
 
 void read_entities(SectionReader& in, Structure& s, const std::string& where) {
@@ -174,8 +216,7 @@ void read_nodes(SectionReader& in, Structure& s, const std::string& where) {
           "{}: node tags {}..{} are not a valid range", where, min_tag, max_tag);
   require(std::uint64_t(max_tag - min_tag) + 1 >= nodes, "{}: {} nodes cannot have tags in {}..{}", where, nodes,
           min_tag, max_tag);
-  s.min_node = min_tag;
-  s.node_present.assign(std::size_t(max_tag - min_tag + 1), false);
+  s.nodes.reset(min_tag, max_tag, nodes);
   std::uint64_t seen = 0;
   for (std::uint64_t b = 0; b < blocks; ++b) {
     const std::int64_t dim = in.int_value("a node block's entity dimension");
@@ -194,12 +235,13 @@ void read_nodes(SectionReader& in, Structure& s, const std::string& where) {
       const std::int64_t tag = in.size_value("a node tag");
       require(tag >= min_tag && tag <= max_tag, "{}: node tag {} is outside the announced range {}..{}", where,
               tag, min_tag, max_tag);
-      require(!s.node_present[std::size_t(tag - min_tag)], "{}: node tag {} is given twice", where, tag);
-      s.node_present[std::size_t(tag - min_tag)] = true;
+      require(s.nodes.add(tag), "{}: node tag {} is given twice", where, tag);
     }
     in.skip_doubles(count * std::uint64_t(3 + (parametric ? dim : 0)), "the node coordinates");
   }
   require(seen == nodes, "{}: {} nodes announced, the blocks hold {}", where, nodes, seen);
+  const std::int64_t twice = s.nodes.finish();
+  require(twice == 0, "{}: node tag {} is given twice", where, twice);
 }
 
 void read_elements(SectionReader& in, const Structure& s, const std::string& where) {
@@ -228,9 +270,7 @@ void read_elements(SectionReader& in, const Structure& s, const std::string& whe
       const std::int64_t tag = in.size_value("an element tag");
       for (int n = 0; n < per_element; ++n) {
         const std::int64_t node = in.size_value("an element's node tag");
-        const bool present = node >= s.min_node && std::uint64_t(node - s.min_node) < s.node_present.size() &&
-                             s.node_present[std::size_t(node - s.min_node)];
-        require(present, "{}: element {} refers to node {}, which the file does not hold", where, tag, node);
+        require(s.nodes.contains(node), "{}: element {} refers to node {}, which the file does not hold", where, tag, node);
       }
     }
   }
