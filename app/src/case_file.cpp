@@ -1,5 +1,6 @@
 #include "kinetofem/app/case_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -389,43 +390,51 @@ std::size_t CaseFile::count(const std::string& array_path) const {
 
 std::string schema_template(const std::vector<KeySpec>& schema, const std::string& title) {
   std::string out = "# " + title + "\n# Every key with its unit, allowed values and default.\n";
-  std::string current_table;
-  for (const auto& s : schema) {
-    if (s.type == KeySpec::Type::TableArray) continue;
+  const auto table_of = [](const KeySpec& s) {
     const auto dot = s.path.rfind('.');
-    std::string table = dot == std::string::npos ? "" : s.path.substr(0, dot);
-    const std::string key = dot == std::string::npos ? s.path : s.path.substr(dot + 1);
-    if (table != current_table) {
-      const bool array = table.size() > 2 && table.substr(table.size() - 2) == "[]";
-      out += array ? "\n[[" + table.substr(0, table.size() - 2) + "]]\n" : "\n[" + table + "]\n";
-      current_table = table;
-    }
-    std::string info = s.doc;
-    if (!s.unit.empty()) info += "; unit: " + s.unit;
-    const std::string range = range_text(s);
-    if (!range.empty()) info += "; " + range;
-    if (!s.allowed.empty()) info += "; one of " + join(s.allowed);
-    if (s.required) info += "; required";
-    out += "# " + info + "\n";
-    std::string value;
-    if (s.default_number) {
-      if (s.type == KeySpec::Type::Vector3)
-        value = fmt::format("[{0:g}, {0:g}, {0:g}]", *s.default_number);
-      else if (s.type == KeySpec::Type::Boolean)
-        value = *s.default_number != 0 ? "true" : "false";
-      else
-        value = fmt::format("{:g}", *s.default_number);
-    } else if (s.default_text) {
-      if (s.type == KeySpec::Type::StringList) {
-        std::stringstream in(*s.default_text);
-        std::vector<std::string> items;
-        for (std::string item; std::getline(in, item, ',');) items.push_back(item);
-        value = "[" + join(items) + "]";
-      } else {
-        value = "\"" + *s.default_text + "\"";
+    return dot == std::string::npos ? std::string() : s.path.substr(0, dot);
+  };
+  // Each table once, in the order of its first key (a table's keys may be
+  // declared in several places, e.g. [solver] by the case type and the shared
+  // solver keys): TOML forbids defining a table twice.
+  std::vector<std::string> tables;
+  for (const auto& s : schema)
+    if (s.type != KeySpec::Type::TableArray && std::find(tables.begin(), tables.end(), table_of(s)) == tables.end())
+      tables.push_back(table_of(s));
+  for (const auto& table : tables) {
+    const bool array = table.size() > 2 && table.substr(table.size() - 2) == "[]";
+    out += array ? "\n[[" + table.substr(0, table.size() - 2) + "]]\n" : "\n[" + table + "]\n";
+    for (const auto& s : schema) {
+      if (s.type == KeySpec::Type::TableArray || table_of(s) != table) continue;
+      const auto dot = s.path.rfind('.');
+      const std::string key = dot == std::string::npos ? s.path : s.path.substr(dot + 1);
+      std::string info = s.doc;
+      if (!s.unit.empty()) info += "; unit: " + s.unit;
+      const std::string range = range_text(s);
+      if (!range.empty()) info += "; " + range;
+      if (!s.allowed.empty()) info += "; one of " + join(s.allowed);
+      if (s.required) info += "; required";
+      out += "# " + info + "\n";
+      std::string value;
+      if (s.default_number) {
+        if (s.type == KeySpec::Type::Vector3)
+          value = fmt::format("[{0:g}, {0:g}, {0:g}]", *s.default_number);
+        else if (s.type == KeySpec::Type::Boolean)
+          value = *s.default_number != 0 ? "true" : "false";
+        else
+          value = fmt::format("{:g}", *s.default_number);
+      } else if (s.default_text) {
+        if (s.type == KeySpec::Type::StringList) {
+          std::stringstream in(*s.default_text);
+          std::vector<std::string> items;
+          for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+          value = "[" + join(items) + "]";
+        } else {
+          value = "\"" + *s.default_text + "\"";
+        }
       }
+      out += (value.empty() ? "# " + key + " = " : key + " = " + value) + "\n";
     }
-    out += (value.empty() ? "# " + key + " = " : key + " = " + value) + "\n";
   }
   return out;
 }

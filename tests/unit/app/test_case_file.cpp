@@ -1,8 +1,13 @@
 // Unit tests of case-file reading: schema checks and their error messages.
 #include <gtest/gtest.h>
 
+#include <set>
+#include <sstream>
+#include <utility>
+
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/fe_static_job.hpp"
+#include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::app {
@@ -82,6 +87,23 @@ TEST(CaseFile, TemplateListsEveryKeyWithItsUnit) {
   EXPECT_NE(t.find("unit: mm"), std::string::npos);
   EXPECT_NE(t.find("[[support]]"), std::string::npos);
   // The template itself is a valid case once the required keys are filled.
+}
+
+TEST(CaseFile, EveryTemplateDefinesEachTableOnce) {
+  // TOML forbids defining a table twice: a key's table may be declared in
+  // several places of a schema ([solver] by the manipulator and by the shared
+  // solver keys), the template must still write it once.
+  for (const auto& [name, schema] : {std::pair{"fe_static", fe_static_schema()},
+                                     std::pair{"manipulator", manipulator_schema()}}) {
+    const std::string t = schema_template(schema, name);
+    std::set<std::string> headers;
+    std::istringstream in(t);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("[", 0) == 0 && line.rfind("[[", 0) != 0) {
+        EXPECT_TRUE(headers.insert(line).second) << name << ": " << line << " twice";
+      }
+    EXPECT_EQ(headers.count("[solver]"), 1u) << name;
+  }
 }
 
 }  // namespace
