@@ -46,7 +46,7 @@ int run_one(const std::string& case_path, double size_mm) {
   options.quiet = true;
   const ManipulatorSummary s = run_manipulator(c, options);
   for (const auto& l : s.links)
-    std::printf("%7.2f %-7s %9ld %8.2f %8.2f %8.2f %9.3f %10.4f %9.2f %10.3e %8.2f %8.1f %6ld\n", size_mm, l.link.c_str(),
+    std::printf("%7.2f %-7s %9ld %8.2f %8.2f %8.2f %9.3f %10.4f %9.2f %10.3e %8.2f %8.1f %6ld\n", size_mm, l.body.c_str(),
                 l.dofs, l.assembly_seconds, l.analyze_seconds, l.factorize_seconds, l.solve_seconds,
                 l.solve_seconds / double(l.right_hand_sides), l.recovery_seconds, l.factor_nonzeros,
                 l.factor_bytes * 1e-9, l.factorization_flops / std::max(l.factorize_seconds, 1e-9) * 1e-9,

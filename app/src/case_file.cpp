@@ -364,6 +364,7 @@ Eigen::Vector3d CaseFile::vector3(const std::string& path, std::size_t element) 
     const auto& array = *node->as_array();
     return Eigen::Vector3d(*numeric(array[0]), *numeric(array[1]), *numeric(array[2])) * s.to_si;
   }
+  if (s.default_vector) return Eigen::Vector3d((*s.default_vector)[0], (*s.default_vector)[1], (*s.default_vector)[2]) * s.to_si;
   if (s.default_number) return Eigen::Vector3d::Constant(*s.default_number * s.to_si);
   fail("{} is required ({}, in {})", where(path, element), s.doc, s.unit);
 }
@@ -416,7 +417,9 @@ std::string schema_template(const std::vector<KeySpec>& schema, const std::strin
       if (s.required) info += "; required";
       out += "# " + info + "\n";
       std::string value;
-      if (s.default_number) {
+      if (s.default_vector) {
+        value = fmt::format("[{:g}, {:g}, {:g}]", (*s.default_vector)[0], (*s.default_vector)[1], (*s.default_vector)[2]);
+      } else if (s.default_number) {
         if (s.type == KeySpec::Type::Vector3)
           value = fmt::format("[{0:g}, {0:g}, {0:g}]", *s.default_number);
         else if (s.type == KeySpec::Type::Boolean)

@@ -295,8 +295,9 @@ int run_post(const PostOptions& o) {
       written.push_back((png_dir / "mechanism_loads.png").string());
     }
     for (const auto& name : r.histories())
-      if (name.rfind("gripper_point_", 0) == 0) {
-        const fs::path p = png_dir / ("path_" + file_safe(name.substr(14)) + ".png");
+      if (name.rfind("gripper_point_", 0) == 0 || name.rfind("point.", 0) == 0) {
+        const std::string point = name.rfind("point.", 0) == 0 ? name.substr(6) : name.substr(14);
+        const fs::path p = png_dir / ("path_" + file_safe(point) + ".png");
         post::write_path_picture(r, p, name, po);
         written.push_back(p.string());
       }

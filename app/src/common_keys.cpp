@@ -79,6 +79,40 @@ std::vector<KeySpec> sweep_keys() {
   };
 }
 
+std::vector<KeySpec> part_mesh_keys() {
+  using Type = KeySpec::Type;
+  const meshes::MeshOptions defaults;
+  return {
+      {.path = "mesh.element_size_mm", .type = Type::Number, .unit = "mm", .to_si = 1e-3, .default_number = 8.0, .min = 0,
+       .min_exclusive = true, .doc = "target element edge length of the parts"},
+      {.path = "mesh.order", .type = Type::Integer, .default_number = double(defaults.order), .min = 1, .max = 2,
+       .doc = "element order: 1 (TET4) or 2 (TET10)"},
+      {.path = "mesh.cache", .type = Type::Boolean, .default_number = 1,
+       .doc = "keep meshes in <output dir>/mesh_cache, keyed by a hash of the geometry, dimensions and mesh options, and reuse them"},
+  };
+}
+
+meshes::MeshOptions read_part_mesh_options(const CaseFile& c, const std::filesystem::path& output_dir) {
+  meshes::MeshOptions options;
+  options.element_size_m = c.number("mesh.element_size_mm");
+  options.order = int(c.integer("mesh.order"));
+  if (c.boolean("mesh.cache")) options.cache_dir = output_dir / "mesh_cache";
+  return options;
+}
+
+std::vector<KeySpec> motion_solver_keys() {
+  const loads::LinkStressOptions defaults;
+  return {{.path = "solver.block_size", .type = KeySpec::Type::Integer, .default_number = double(defaults.block_size),
+           .min = 1, .max = 100000, .doc = "right-hand sides per block solve over the motion"}};
+}
+
+loads::LinkStressOptions read_stress_options(const CaseFile& c) {
+  loads::LinkStressOptions options;
+  options.block_size = int(c.integer("solver.block_size"));
+  options.solver = read_solver_options(c);
+  return options;
+}
+
 std::vector<KeySpec> with_common_keys(std::vector<KeySpec> keys) {
   for (auto&& k : material_keys()) keys.push_back(std::move(k));
   for (auto&& k : solver_keys()) keys.push_back(std::move(k));

@@ -7,20 +7,26 @@
 #include <numbers>
 #include <set>
 
+#include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/app/motion_keys.hpp"
+#include "kinetofem/app/part_keys.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/multibody/dynamics.hpp"
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
-#include "kinetofem/postproc/results_writer.hpp"
+#include "kinetofem/core/units.hpp"
+#include "kinetofem/mechanisms/time_grid.hpp"
+#include "kinetofem/pipeline/motion_to_stress.hpp"
+#include "kinetofem/pipeline/run_report.hpp"
 
 namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0, kRpm = 2.0 * std::numbers::pi / 60.0;
-
-const std::vector<std::string> kLaws = {"polynomial345", "cycloidal", "trapezoidal", "constant_velocity", "csv"};
+using units::kDeg;
+using units::kMm;
+using units::kRpm;
 
 // Keys of a relative coordinate (drives, the CVODES coordinate) under `prefix`.
 void add_coordinate_keys(std::vector<KeySpec>& s, const std::string& prefix, bool required) {
@@ -32,39 +38,6 @@ void add_coordinate_keys(std::vector<KeySpec>& s, const std::string& prefix, boo
   s.push_back({.path = prefix + "point_j", .type = Type::String, .default_text = "origin", .doc = "point of body_j (displacement)"});
   s.push_back({.path = prefix + "axis", .type = Type::Array, .doc = "displacement direction [x, y] in body_i's frame; default [1, 0]"});
 }
-
-// Keys of a motion law under `prefix` (law key named `law_key`).
-void add_law_keys(std::vector<KeySpec>& s, const std::string& prefix, const std::string& law_key, bool has_default) {
-  KeySpec law{.path = prefix + law_key, .type = Type::String, .allowed = kLaws,
-              .doc = "motion law s(t): rises by the stroke over [0, duration] and dwells outside (constant_velocity: s = speed t; csv: a table)"};
-  if (has_default) law.default_text = "polynomial345";
-  s.push_back(law);
-  s.push_back({.path = prefix + "stroke_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "stroke of an angle law"});
-  s.push_back({.path = prefix + "stroke_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "stroke of a displacement law"});
-  s.push_back({.path = prefix + "duration_s", .type = Type::Number, .unit = "s", .min = 0, .min_exclusive = true, .doc = "duration of the rise (polynomial345, cycloidal, trapezoidal)"});
-  s.push_back({.path = prefix + "accel_fraction", .type = Type::Number, .default_number = 0.25, .min = 0, .max = 1, .min_exclusive = true, .doc = "trapezoidal: acceleration time fraction kP"});
-  s.push_back({.path = prefix + "decel_fraction", .type = Type::Number, .default_number = 0.25, .min = 0, .max = 1, .min_exclusive = true, .doc = "trapezoidal: deceleration time fraction kT"});
-  s.push_back({.path = prefix + "speed_deg_s", .type = Type::Number, .unit = "deg/s", .to_si = kDeg, .doc = "constant_velocity: rate of an angle"});
-  s.push_back({.path = prefix + "speed_mm_s", .type = Type::Number, .unit = "mm/s", .to_si = kMm, .doc = "constant_velocity: rate of a displacement"});
-  s.push_back({.path = prefix + "file", .type = Type::String, .doc = "csv: file of rows 't_s, s' (s in deg or mm), relative to the case file"});
-}
-
-// A law whose values are those of another times a factor (csv tables in deg or mm).
-class ScaledLaw final : public mech::MotionLaw {
- public:
-  ScaledLaw(std::shared_ptr<const mech::MotionLaw> law, double factor) : law_(std::move(law)), factor_(factor) {}
-  mech::MotionState at(double t) const override {
-    const mech::MotionState m = law_->at(t);
-    return {factor_ * m.s, factor_ * m.s_dot, factor_ * m.s_ddot};
-  }
-  double stroke() const override { return factor_ * law_->stroke(); }
-  double duration() const override { return law_->duration(); }
-  std::string describe() const override { return fmt::format("{} (x {:g} to SI)", law_->describe(), factor_); }
-
- private:
-  std::shared_ptr<const mech::MotionLaw> law_;
-  double factor_;
-};
 
 bool valid_name(const std::string& name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
@@ -128,50 +101,13 @@ class Reader {
     return rc;
   }
 
-  // A number key given in the coordinate's unit: `base`_deg for angles, `base`_mm for displacements.
   std::optional<double> coordinate_number(const std::string& prefix, const std::string& base, const std::string& suffix_deg,
                                           const std::string& suffix_mm, bool angle, std::size_t k) const {
-    const std::string mine = prefix + base + (angle ? suffix_deg : suffix_mm);
-    const std::string other = prefix + base + (angle ? suffix_mm : suffix_deg);
-    require(!c_.has(other, k), "{}: this drive's coordinate is {}: use '{}{}'", c_.where(other, k),
-            angle ? "an angle" : "a displacement", base, angle ? suffix_deg : suffix_mm);
-    if (!c_.has(mine, k)) return std::nullopt;
-    return c_.number(mine, k);
+    return app::coordinate_number(c_, prefix, base, suffix_deg, suffix_mm, angle, k);
   }
-
   std::shared_ptr<const mech::MotionLaw> law(const std::string& prefix, const std::string& law_key, bool angle,
                                              std::size_t k) const {
-    const std::string law = c_.text_value(prefix + law_key, k);
-    const std::string at = c_.where(prefix + law_key, k);
-    if (law == "csv") {
-      require(c_.has(prefix + "file", k), "{} = \"csv\": needs 'file' (rows t_s, s in {})", at, angle ? "deg" : "mm");
-      std::filesystem::path file = c_.text_value(prefix + "file", k);
-      if (file.is_relative()) file = c_.path().parent_path() / file;
-      require(std::filesystem::is_regular_file(file), "{} = \"{}\": no such file ({})", c_.where(prefix + "file", k),
-              c_.text_value(prefix + "file", k), file.string());
-      try {
-        auto table = std::make_shared<mech::TabulatedLaw>(mech::TabulatedLaw::from_csv(file.string()));
-        return std::make_shared<ScaledLaw>(table, angle ? kDeg : kMm);
-      } catch (const Error& e) {
-        fail("{}: {}", c_.where(prefix + "file", k), e.what());
-      }
-    }
-    if (law == "constant_velocity") {
-      const auto speed = coordinate_number(prefix, "speed", "_deg_s", "_mm_s", angle, k);
-      require(speed.has_value(), "{} = \"constant_velocity\": needs '{}'", at, angle ? "speed_deg_s" : "speed_mm_s");
-      return std::make_shared<mech::ConstantVelocityLaw>(*speed);
-    }
-    const auto stroke = coordinate_number(prefix, "stroke", "_deg", "_mm", angle, k);
-    require(stroke.has_value(), "{} = \"{}\": needs '{}'", at, law, angle ? "stroke_deg" : "stroke_mm");
-    require(c_.has(prefix + "duration_s", k), "{} = \"{}\": needs 'duration_s'", at, law);
-    const double duration = c_.number(prefix + "duration_s", k);
-    if (law == "cycloidal") return std::make_shared<mech::CycloidalLaw>(*stroke, duration);
-    if (law == "trapezoidal") {
-      const double kp = c_.number(prefix + "accel_fraction", k), kt = c_.number(prefix + "decel_fraction", k);
-      require(kp + kt <= 1.0, "{}: accel_fraction + decel_fraction = {:g} must not exceed 1", at, kp + kt);
-      return std::make_shared<mech::TrapezoidalLaw>(*stroke, duration, kp, kt);
-    }
-    return std::make_shared<mech::Polynomial345Law>(*stroke, duration);
+    return read_motion_law(c_, prefix, law_key, angle, k);
   }
 
  private:
@@ -242,7 +178,7 @@ const std::vector<KeySpec>& linkage_schema() {
     s.push_back({.path = "motion_drive", .type = Type::TableArray, .doc = "prescribed motions s(t) = s_0 + law(t) (constraints)"});
     s.push_back({.path = "motion_drive[].name", .type = Type::String, .doc = "name", .required = true});
     add_coordinate_keys(s, "motion_drive[].", true);
-    add_law_keys(s, "motion_drive[].", "law", true);
+    add_motion_law_keys(s, "motion_drive[].", "law", {.default_law = "polynomial345"});
     s.push_back({.path = "motion_drive[].initial_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "s_0 of an angle; default: from the initial poses"});
     s.push_back({.path = "motion_drive[].initial_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "s_0 of a displacement; default: from the initial poses"});
     s.push_back({.path = "force_drive", .type = Type::TableArray, .doc = "motors: an effort on the relative coordinate"});
@@ -260,7 +196,7 @@ const std::vector<KeySpec>& linkage_schema() {
     s.push_back({.path = "force_drive[].kd_nms_per_rad", .type = Type::Number, .unit = "N*m*s/rad", .min = 0, .doc = "pd_servo: damping gain (angle)"});
     s.push_back({.path = "force_drive[].kp_n_per_m", .type = Type::Number, .unit = "N/m", .min = 0, .doc = "pd_servo: stiffness gain (displacement)"});
     s.push_back({.path = "force_drive[].kd_ns_per_m", .type = Type::Number, .unit = "N*s/m", .min = 0, .doc = "pd_servo: damping gain (displacement)"});
-    add_law_keys(s, "force_drive[].", "reference", false);
+    add_motion_law_keys(s, "force_drive[].", "reference", {});
     s.push_back({.path = "force_drive[].initial_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "pd_servo: s_0 of an angle; default: from the initial poses"});
     s.push_back({.path = "force_drive[].initial_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "pd_servo: s_0 of a displacement; default: from the initial poses"});
     // gravity and simulation
@@ -275,8 +211,20 @@ const std::vector<KeySpec>& linkage_schema() {
     s.push_back({.path = "simulation.characteristic_length_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 0, .min = 0,
                  .doc = "length that scales the drift checks; 0: the largest distance of a point or body origin from the first body's origin"});
     s.push_back({.path = "simulation.slack_is_error", .type = Type::Boolean, .default_number = 1, .doc = "a chain with negative tension stops the run (naming the time)"});
+    s.push_back({.path = "simulation.initial_step_s", .type = Type::Number, .unit = "s", .default_number = 0, .min = 0,
+                 .doc = "first integrator step; 0: automatic (from the initial accelerations and the tolerances)"});
     add_coordinate_keys(s, "simulation.coordinate.", false);
-    return s;
+    // FE parts and the stress over the motion
+    add_part_keys(s);
+    for (auto&& k : part_mesh_keys()) s.push_back(std::move(k));
+    for (auto&& k : motion_solver_keys()) s.push_back(std::move(k));
+    s.push_back({.path = "static_study.enabled", .type = Type::Boolean, .default_number = 0,
+                 .doc = "also solve the parts in a static pose (at rest: gravity, point masses, forces); needs a fully driven linkage"});
+    s.push_back({.path = "static_study.time_s", .type = Type::Number, .unit = "s", .default_number = 0, .min = 0,
+                 .doc = "the static pose: every motion drive at its value of this time of the motion"});
+    s.push_back({.path = "output.tracked_points", .type = Type::StringList,
+                 .doc = "body points whose world path is written as a history point.<body>.<point>, as \"body.point\""});
+    return with_common_keys(s);
   }();
   return schema;
 }
@@ -286,7 +234,8 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
   mech::MultibodyModel m;
   m.name = mechanism_case_name(c);
 
-  std::set<std::string> body_names;
+  std::set<std::string> body_names, bodies_with_parts;
+  for (std::size_t k = 0; k < c.count("part"); ++k) bodies_with_parts.insert(c.text_value("part[].body", k));
   const std::size_t n_bodies = c.count("body");
   require(n_bodies >= 2, "{}: a linkage needs at least two [[body]] tables (a ground and a moving body), got {}",
           c.path().string(), n_bodies);
@@ -301,8 +250,8 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
     const Eigen::Vector3d vel = c.vector3("body[].velocity_mm_s_deg_s", k);
     b.velocity = {vel.x() * kMm, vel.y() * kMm, vel.z() * kDeg};
     b.fixed = c.boolean("body[].fixed", k);
-    if (!b.fixed)
-      require(b.mass_kg > 0 && b.inertia_kgm2 > 0, "{}: moving body '{}' needs mass_kg > 0 and inertia_kgm2 > 0 (got {:g} kg, {:g} kg*m^2)",
+    if (!b.fixed && !bodies_with_parts.contains(b.name))
+      require(b.mass_kg > 0 && b.inertia_kgm2 > 0, "{}: moving body '{}' needs mass_kg > 0 and inertia_kgm2 > 0 (got {:g} kg, {:g} kg*m^2), or a [[part]] to take them from",
               c.where("body[].name", k), b.name, b.mass_kg, b.inertia_kgm2);
     m.bodies.push_back(b);
   }
@@ -448,185 +397,74 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
   return m;
 }
 
-namespace {
-
-std::string effort_unit(const mech::MultibodyModel& m, std::size_t drive) {
-  const std::size_t n_motion = m.motion_drives.size();
-  const auto& rc = drive < n_motion ? m.motion_drives[drive].coordinate : m.force_drives[drive - n_motion].coordinate;
-  return rc.type == mech::CoordinateType::Angle ? "N*m" : "N";
-}
-
-bool is_angle(const mech::MultibodyModel& m, std::size_t drive) { return effort_unit(m, drive) == "N*m"; }
-
-void write_histories(post::ResultsWriter& w, const mech::MultibodyModel& m, const mech::Results& res,
-                     const std::vector<double>& times) {
-  const std::size_t T = res.frames.size();
-  w.set_mechanism_time(times);
-  const std::vector<std::string> xy = {"x", "y"};
-  auto column = [&](auto&& get, int cols) {
-    post::FieldMatrix out(T, cols);
-    for (std::size_t k = 0; k < T; ++k) get(res.frames[k], out.row(Eigen::Index(k)));
-    return out;
-  };
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const std::string p = "body." + m.bodies[b].name + ".";
-    w.write_history(p + "position", "m", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q.head<2>().transpose(); }, 2), xy);
-    w.write_history(p + "angle", "rad", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q.z(); }, 1));
-    w.write_history(p + "velocity", "m/s", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q_dot.head<2>().transpose(); }, 2), xy);
-    w.write_history(p + "angular_velocity", "rad/s", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q_dot.z(); }, 1));
-    w.write_history(p + "acceleration", "m/s^2", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q_ddot.head<2>().transpose(); }, 2), xy);
-    w.write_history(p + "angular_acceleration", "rad/s^2", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q_ddot.z(); }, 1));
-    w.write_history(p + "com_position", "m", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].com.transpose(); }, 2), xy);
-    w.write_history(p + "com_acceleration", "m/s^2", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].com_acceleration.transpose(); }, 2), xy);
-  }
-  for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    for (int side = 0; side < 2; ++side) {
-      const std::string body = side == 0 ? m.joints[j].body_i : m.joints[j].body_j;
-      const std::string p = "joint." + m.joints[j].name + ".on_" + body + ".";
-      auto on = [side, j](const mech::Frame& f) -> const mech::Reaction& { return side == 0 ? f.joints[j].on_i : f.joints[j].on_j; };
-      w.write_history(p + "force_world", "N", column([&](const mech::Frame& f, auto row) { row = on(f).force_world.transpose(); }, 2), xy);
-      w.write_history(p + "force_body", "N", column([&](const mech::Frame& f, auto row) { row = on(f).force_body.transpose(); }, 2), xy);
-      w.write_history(p + "moment", "N*m", column([&](const mech::Frame& f, auto row) { row(0) = on(f).moment_Nm; }, 1));
-    }
-  }
-  const std::size_t n_drives = m.motion_drives.size() + m.force_drives.size();
-  for (std::size_t d = 0; d < n_drives; ++d) {
-    const std::string p = "drive." + res.frames.front().drives[d].name + ".";
-    const bool angle = is_angle(m, d);
-    w.write_history(p + "s", angle ? "rad" : "m", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].s; }, 1));
-    w.write_history(p + "s_dot", angle ? "rad/s" : "m/s", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].s_dot; }, 1));
-    w.write_history(p + "s_ddot", angle ? "rad/s^2" : "m/s^2", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].s_ddot; }, 1));
-    w.write_history(p + "effort", effort_unit(m, d), column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].effort; }, 1));
-    w.write_history(p + "power", "W", column([&](const mech::Frame& f, auto row) { row(0) = f.drives[d].power_W; }, 1));
-  }
-  for (std::size_t ch = 0; ch < res.frames.front().chains.size(); ++ch) {
-    const std::string p = "chain." + res.frames.front().chains[ch].name + ".";
-    w.write_history(p + "tension", "N", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].tension_N; }, 1));
-    w.write_history(p + "free_length", "m", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].free_length_m; }, 1));
-    w.write_history(p + "wrap_angle", "rad", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].wrap_angle_rad; }, 1));
-  }
-  w.write_history("energy.kinetic", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.kinetic_energy_J; }, 1));
-  w.write_history("energy.potential", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.potential_energy_J; }, 1));
-  w.write_history("energy.work_drives", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.work_drives_J; }, 1));
-  w.write_history("energy.work_other", "J", column([&](const mech::Frame& f, auto row) { row(0) = f.work_other_J; }, 1));
-  w.write_history("check.drift_position", "m", column([&](const mech::Frame& f, auto row) { row(0) = f.drift_position_m; }, 1));
-  w.write_history("check.equilibrium_residual", "1", column([&](const mech::Frame& f, auto row) { row(0) = f.equilibrium_residual; }, 1));
-}
-
-}  // namespace
-
 LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
+  const Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   Stopwatch total;
-  LinkageRun run;
-  run.model = read_linkage_model(c);
-  const mech::MultibodyModel& m = run.model;
   const std::string name = mechanism_case_name(c);
-  log.info("kinetofem: case '{}' ({}), linkage: {} bodies, {} joints, {} motion drives, {} force drives, {} springs",
-           name, c.path().string(), m.bodies.size(), m.joints.size(), m.motion_drives.size(), m.force_drives.size(),
-           m.springs.size());
-  std::unique_ptr<mech::MultibodySystem> system;
-  try {
-    system = std::make_unique<mech::MultibodySystem>(m);
-  } catch (const Error& e) {
-    fail("{}: the linkage is not valid: {}", c.path().string(), e.what());
-  }
-  const std::string method = c.text_value("simulation.method");
-  const double duration = c.number("simulation.duration_s");
-  const long n_times = c.integer("simulation.output_times");
-  std::vector<double> times;
-  for (long k = 0; k < n_times; ++k) times.push_back(duration * double(k) / double(n_times - 1));
-  const Eigen::VectorXd q0 = system->initial_coordinates();
-  int dof = 0;
-  try {
-    dof = mech::degrees_of_freedom(*system, mech::assemble(*system, q0, 0.0), 0.0);
-  } catch (const Error& e) {
-    fail("{}: the linkage cannot be run: {}", c.path().string(), e.what());
-  }
-  log.info("  {} coordinates, {} constraint equations, {} degree(s) of freedom; {} over {:g} s, {} output times",
-           system->n_coordinates(), system->n_constraints(), dof, method, duration, n_times);
 
-  mech::DynamicsOptions dyn;
+  // ---- read the case: the mechanism, its parts, the run ----------------------
+  pipeline::MotionStressCase run_case;
+  run_case.label = c.path().string();
+  run_case.model = read_linkage_model(c);
+  const mech::MultibodyModel& m = run_case.model;
+  log.info("kinetofem: case '{}' ({}), linkage: {} bodies, {} joints, {} motion drives, {} force drives, {} springs, {} parts",
+           name, c.path().string(), m.bodies.size(), m.joints.size(), m.motion_drives.size(), m.force_drives.size(),
+           m.springs.size(), c.count("part"));
+  run_case.parts = read_parts(c, m);
+  run_case.times = mech::equally_spaced_times(c.number("simulation.duration_s"), c.integer("simulation.output_times"));
+  const std::string method = c.text_value("simulation.method");
+  run_case.dynamics.method = method == "kinematic" ? pipeline::DynamicsMethod::Kinematic
+                             : method == "cvodes"  ? pipeline::DynamicsMethod::Cvodes
+                                                   : pipeline::DynamicsMethod::Idas;
+  mech::DynamicsOptions& dyn = run_case.dynamics.options;
   dyn.relative_tolerance = c.number("simulation.relative_tolerance");
   dyn.absolute_tolerance = c.number("simulation.absolute_tolerance");
   dyn.max_step_s = c.number("simulation.max_step_s");
+  dyn.initial_step_s = c.number("simulation.initial_step_s");
   dyn.slack_is_error = c.boolean("simulation.slack_is_error");
-  Stopwatch clock;
-  try {
-    if (method == "kinematic") {
-      require(dof == 0, "simulation.method = \"kinematic\" needs a fully driven linkage (0 DoF); this one has {} DoF: "
-              "add motion drives or use \"idas\"", dof);
-      mech::KinematicOptions ko;
-      ko.slack_is_error = dyn.slack_is_error;
-      run.results = mech::run_kinematics(*system, times, ko);
-    } else if (method == "cvodes") {
-      require(dof == 1, "simulation.method = \"cvodes\" needs a linkage with 1 DoF; this one has {} DoF", dof);
-      mech::RelativeCoordinate rc;
-      if (c.has("simulation.coordinate.body_i")) {
-        rc = Reader(c).coordinate(m.bodies, "simulation.coordinate.", 0);
-      } else {
-        require(!m.force_drives.empty(), "simulation.method = \"cvodes\": give [simulation.coordinate] (no force drive to take it from)");
-        rc = m.force_drives.front().coordinate;
-      }
-      run.results = mech::simulate_minimal(*system, rc, times, dyn);
-    } else {
-      run.results = mech::simulate_ggl(*system, times, dyn);
-    }
-  } catch (const Error& e) {
-    fail("{}: the linkage cannot be run: {}", c.path().string(), e.what());
+  if (c.has("simulation.coordinate.body_i"))
+    run_case.dynamics.cvodes_coordinate = Reader(c).coordinate(m.bodies, "simulation.coordinate.", 0);
+  if (c.boolean("static_study.enabled")) {
+    const double t = c.number("static_study.time_s");
+    std::vector<double> values;
+    for (const auto& d : m.motion_drives) values.push_back(d.law ? d.law->at(t).s : 0.0);
+    run_case.static_pose = values;
   }
-  log.info("  {}: {:.3f} s", method, clock.seconds());
-  const mech::Results& res = run.results;
+  for (const auto& text : c.has("output.tracked_points") ? c.strings("output.tracked_points") : std::vector<std::string>{}) {
+    const auto dot = text.find('.');
+    require(dot != std::string::npos, "{} = \"{}\": write \"body.point\"", c.where("output.tracked_points"), text);
+    run_case.tracked_points.push_back({text.substr(0, dot), text.substr(dot + 1)});
+  }
+  run_case.material = read_material(c);
+  run_case.mesh = read_part_mesh_options(c, options.output_dir);
+  run_case.stress = read_stress_options(c);
+  run_case.results_file = mechanism_results_path(c, options, name);
+  run_case.provenance = mechanism_provenance(c, options);
 
-  run.results_file = mechanism_results_path(c, options, name);
-  post::ResultsWriter writer(run.results_file, mechanism_provenance(c, options));
-  write_histories(writer, m, res, times);
-  writer.commit();
+  // ---- run the pipeline ------------------------------------------------------
+  pipeline::MotionStressRun result = pipeline::run_motion_to_stress(run_case, log);
 
   // ---- summary ----------------------------------------------------------------
-  std::printf("\nSummary of '%s' (linkage, %s, %zu output times over %.4g s, %d DoF)\n", name.c_str(), method.c_str(),
-              res.frames.size(), duration, dof);
-  const std::size_t n_drives = res.frames.front().drives.size();
-  for (std::size_t d = 0; d < n_drives; ++d) {
-    double lo = 1e300, hi = -1e300, t_lo = 0, t_hi = 0, p_max = 0;
-    for (const auto& f : res.frames) {
-      const double e = f.drives[d].effort;
-      if (e < lo) lo = e, t_lo = f.t;
-      if (e > hi) hi = e, t_hi = f.t;
-      p_max = std::max(p_max, std::abs(f.drives[d].power_W));
-    }
-    run.max_abs_drive_effort = std::max({run.max_abs_drive_effort, std::abs(lo), std::abs(hi)});
-    const std::string unit = effort_unit(m, d);
-    std::printf("  drive %-16s %s: effort %.4g %s (t = %.4g s) .. %.4g %s (t = %.4g s); peak |power| %.4g W\n",
-                res.frames.front().drives[d].name.c_str(), d < m.motion_drives.size() ? "(motion)" : "(force) ", lo,
-                unit.c_str(), t_lo, hi, unit.c_str(), t_hi, p_max);
-  }
-  for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    double peak = 0, t_peak = 0, moment = 0;
-    for (const auto& f : res.frames) {
-      if (f.joints[j].on_j.force_world.norm() > peak) peak = f.joints[j].on_j.force_world.norm(), t_peak = f.t;
-      moment = std::max(moment, std::abs(f.joints[j].on_j.moment_Nm));
-    }
-    std::printf("  joint %-16s max |reaction| %.4g N (t = %.4g s)%s\n", m.joints[j].name.c_str(), peak, t_peak,
-                moment > 0 && m.joints[j].type != mech::JointType::Revolute
-                    ? fmt::format("; max |moment| on {} {:.4g} N m", m.joints[j].body_j, moment).c_str()
-                    : "");
-  }
-  const std::size_t n_chains = res.frames.front().chains.size();
-  for (std::size_t ch = 0; ch < n_chains; ++ch) {
-    double lo = 1e300, hi = -1e300, t_lo = 0;
-    for (const auto& f : res.frames) {
-      if (f.chains[ch].tension_N < lo) lo = f.chains[ch].tension_N, t_lo = f.t;
-      hi = std::max(hi, f.chains[ch].tension_N);
-    }
-    if (ch == 0) run.min_chain_tension_n = lo, run.max_chain_tension_n = hi;
-    run.min_chain_tension_n = std::min(run.min_chain_tension_n, lo);
-    run.max_chain_tension_n = std::max(run.max_chain_tension_n, hi);
-    std::printf("  chain %-16s tension %.4g N (min, t = %.4g s) .. %.4g N%s\n", res.frames.front().chains[ch].name.c_str(),
-                lo, t_lo, hi, lo <= 0 ? "  SLACK: the chain cannot push" : "");
-  }
-  std::printf("%s\n", res.format_checks().c_str());
+  LinkageRun run;
+  run.model = result.model;
+  run.results = std::move(result.motion);
+  run.results_file = result.results_file;
+  run.parts = result.parts;
+  const pipeline::MechanismExtremes extremes = pipeline::mechanism_extremes(run.model, run.results);
+  run.max_abs_drive_effort = extremes.max_abs_drive_effort;
+  run.min_chain_tension_n = extremes.min_chain_tension_n;
+  run.max_chain_tension_n = extremes.max_chain_tension_n;
+  std::printf("\nSummary of '%s' (linkage, %s, %zu output times over %.4g s)\n%s", name.c_str(), method.c_str(),
+              run.results.frames.size(), run_case.times.back(), extremes.text.c_str());
+  if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
+  std::printf("%s\n", run.results.format_checks().c_str());
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());
+  const pipeline::PartExtremes pe = pipeline::part_extremes(run.parts);
+  write_run_summary(options.output_dir,
+                    {.name = name, .type = "linkage", .results_file = run.results_file, .wall_time_s = total.seconds(),
+                     .max_von_mises_pa = pe.max_von_mises_pa, .max_displacement_m = pe.max_displacement_m,
+                     .extra = {{"max_abs_drive_effort", run.max_abs_drive_effort},
+                               {"min_chain_tension_n", run.min_chain_tension_n}}});
   return run;
 }
 

@@ -5,59 +5,59 @@
 // tuned to these numbers, so agreement is not a verification criterion.
 // Runs the two manipulator cases with their own mesh but 21 output times
 // instead of 101 (the compared values come from the static pose study, which
-// does not depend on the output times); left out by --quick.
+// does not depend on the output times); left out by --quick. The case files
+// are the ones compiled into the program (embedded_cases.hpp), the published
+// numbers those of mech::published_analysis (published_analyses.hpp).
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "kinetofem/app/case_file.hpp"
+#include "kinetofem/app/embedded_cases.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/app/verify.hpp"
-#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
+#include "kinetofem/mechanisms/published_analyses.hpp"
 
 namespace kinetofem::app {
 
 namespace {
 
-constexpr double kMpa = 1e6, kMm = 1e-3;
+using units::kMm;
+using units::kMpa;
 constexpr const char* kCoarseTimes = "motion.output_times=21";
-
-// cases/<name>/case.toml: from the working directory (a checkout's root),
-// else from the source tree the program was built from.
-std::filesystem::path case_file(const std::string& name) {
-  const std::filesystem::path relative = std::filesystem::path("cases") / name / "case.toml";
-  if (std::filesystem::exists(relative)) return relative;
-  const std::filesystem::path source =
-      std::filesystem::path(KINETOFEM_GEOMETRY_DIR).parent_path().parent_path() / relative;
-  require(std::filesystem::exists(source), "case file {} not found (looked in the working directory and in {})",
-          relative.string(), source.parent_path().parent_path().parent_path().string());
-  return source;
-}
 
 struct CaseRun {
   ManipulatorSummary summary;
   double element_size_m = 0.0;
 };
 
-CaseRun run_published_case(const std::string& name, const CheckContext& context) {
+// Runs cases/<name>/case.toml from its embedded text (the path names where
+// the text comes from, in messages and the results' provenance).
+CaseRun run_published_case(const std::string& name, std::string_view text, const CheckContext& context) {
   RunOptions options;
-  options.case_path = case_file(name);
+  options.case_path = std::filesystem::path("cases") / name / "case.toml";
   options.output_dir = context.output_dir;
   options.quiet = true;
   options.overrides = {kCoarseTimes};
   options.command_line = "kinetofem verify (SPEC §3 run)";
-  const CaseFile c = CaseFile::load(options.case_path, manipulator_schema(), false, options.overrides);
+  const CaseFile c =
+      CaseFile::parse(std::string(text), options.case_path, manipulator_schema(), false, options.overrides);
   return {run_manipulator(c, options), c.number("mesh.element_size_mm")};
 }
 
-// SPEC §3 table: max von Mises and max total deformation (figure legend), and
-// the text's "about 0.1 mm" for both; computed: the static pose study (the
-// published load case is static: the casting's weight).
-std::vector<CheckRow> published_rows(const std::string& label, const CaseRun& run, double vm_pa,
-                                     const std::string& vm_source, double deformation_figure_m,
-                                     const std::string& figure) {
+// SPEC §3 (mech::published_analysis): max von Mises and max total
+// deformation (figure legend), and the text's "about 0.1 mm" for both;
+// computed: the static pose study (the published load case is static: the
+// casting's weight).
+std::vector<CheckRow> published_rows(mech::ManipulatorType type, const std::string& case_name,
+                                     std::string_view case_text, const CheckContext& context) {
+  const mech::PublishedAnalysis published = mech::published_analysis(type);
+  const CaseRun run = run_published_case(case_name, case_text, context);
+  const std::string label = published.model;
   const std::string note = fmt::format(
       "informational: static pose study of the case (mesh {:g} mm); link geometry reconstructed, not tuned",
       run.element_size_m / kMm);
@@ -65,21 +65,22 @@ std::vector<CheckRow> published_rows(const std::string& label, const CaseRun& ru
   // motion removed), not the assembly's total deformation: see the case README.
   const std::string u_note = note + "; elastic deformation of each link, rigid-body motion removed";
   const double vm = run.summary.static_max_von_mises_pa, u = run.summary.static_max_displacement_m;
-  return {reported(label + ": max von Mises", vm_source, "MPa", vm_pa / kMpa, vm / kMpa, note),
-          reported(label + ": max deformation (figure reading)", "SPEC §3, " + figure, "mm",
-                   deformation_figure_m / kMm, u / kMm, u_note),
-          reported(label + ": max deformation (text reading)", "SPEC §3, text: about 0.1 mm", "mm", 0.1, u / kMm,
-                   u_note)};
+  return {reported(label + ": max von Mises", published.von_mises_source, "MPa", published.von_mises_pa / kMpa,
+                   vm / kMpa, note),
+          reported(label + ": max deformation (figure reading)", published.deformation_figure_source, "mm",
+                   published.deformation_figure_m / kMm, u / kMm, u_note),
+          reported(label + ": max deformation (text reading)",
+                   fmt::format("SPEC §3, text: about {:g} mm", published.deformation_text_m / kMm), "mm",
+                   published.deformation_text_m / kMm, u / kMm, u_note)};
 }
 
 std::vector<CheckRow> lever_chain_published(const CheckContext& context) {
-  return published_rows("lever-chain manipulator", run_published_case("lever_chain_manipulator", context), 23.1e6,
-                        "SPEC §3, fig. IV.9: 23.1 MPa", 0.86e-3, "fig. IV.10: 0.86 mm");
+  return published_rows(mech::ManipulatorType::LeverChain, "lever_chain_manipulator",
+                        lever_chain_manipulator_case_text(), context);
 }
 
 std::vector<CheckRow> lever_published(const CheckContext& context) {
-  return published_rows("lever manipulator", run_published_case("lever_manipulator", context), 16e6,
-                        "SPEC §3, text: below 16 MPa", 0.89e-3, "fig. IV.22: 0.89 mm");
+  return published_rows(mech::ManipulatorType::Lever, "lever_manipulator", lever_manipulator_case_text(), context);
 }
 
 }  // namespace

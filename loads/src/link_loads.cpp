@@ -1,5 +1,7 @@
 #include "kinetofem/loads/link_loads.hpp"
 
+#include "kinetofem/solver/rigid_body.hpp"
+
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -114,6 +116,53 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     d.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
     drives_.push_back(std::move(d));
   }
+  auto body_of = [&](const std::string& name) {
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == name) return int(b);
+    fail("link '{}': the mechanism has no body '{}'", link.body, name);
+  };
+  auto point_of = [&](int b, const std::string& point) -> Eigen::Vector2d {
+    if (point == "origin") return Eigen::Vector2d::Zero();
+    const auto& points = model.bodies[size_t(b)].points;
+    const auto it = points.find(point);
+    require(it != points.end(), "link '{}': body '{}' has no point '{}'", link.body, model.bodies[size_t(b)].name,
+            point);
+    return it->second;
+  };
+  model_springs_ = model.springs;
+  for (const auto& sp : model.springs) {
+    spring_body_i_.push_back(body_of(sp.body_i));
+    spring_body_j_.push_back(body_of(sp.body_j));
+    spring_point_i_.push_back(point_of(spring_body_i_.back(), sp.point_i));
+    spring_point_j_.push_back(point_of(spring_body_j_.back(), sp.point_j));
+  }
+  for (const auto& attachment : link.springs) {
+    Spring s;
+    s.name = attachment.spring;
+    for (size_t k = 0; k < model.springs.size(); ++k)
+      if (model.springs[k].name == s.name) s.spring_index = int(k);
+    require(s.spring_index >= 0, "link '{}': the mechanism has no spring '{}'", link.body, s.name);
+    const mech::Spring& sp = model.springs[size_t(s.spring_index)];
+    require(sp.body_i == link.body || sp.body_j == link.body, "link '{}': spring '{}' does not act on it", link.body,
+            s.name);
+    s.on_i = sp.body_i == link.body;
+    s.point_body = lift(s.on_i ? spring_point_i_[size_t(s.spring_index)] : spring_point_j_[size_t(s.spring_index)]);
+    s.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    springs_.push_back(std::move(s));
+  }
+  for (const auto& attachment : link.point_forces) {
+    PointForce f;
+    f.name = attachment.point_force;
+    const mech::PointForce* found = nullptr;
+    for (const auto& pf : model.point_forces)
+      if (pf.name == f.name) found = &pf;
+    require(found != nullptr, "link '{}': the mechanism has no point force '{}'", link.body, f.name);
+    require(found->body == link.body, "link '{}': point force '{}' acts on body '{}'", link.body, f.name, found->body);
+    f.force_world = lift(found->force_world);
+    f.point_body = lift(point_of(body_index_, found->point));
+    f.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    point_forces_.push_back(std::move(f));
+  }
 }
 
 LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
@@ -159,6 +208,35 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
     const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
     d.coupling->add(Eigen::Vector3d::Zero(), moment, d.coupling->centroid(), out.forces);
     magnitude += std::abs(effort) / length_scale_;
+  }
+
+  for (const auto& sp : springs_) {
+    // Tension k (L - L0) + c L' as the multibody model applies it
+    // (MultibodySystem::applied_loads): +N e on point_i, -N e on point_j.
+    const size_t k = size_t(sp.spring_index);
+    auto world_point = [&](int b, const Eigen::Vector2d& p, Eigen::Vector2d& velocity) {
+      const mech::BodyFrame& bf = frame.bodies.at(size_t(b));
+      const Eigen::Vector2d r = Eigen::Rotation2Dd(bf.q.z()) * p;
+      velocity = bf.q_dot.head<2>() + bf.q_dot.z() * Eigen::Vector2d(-r.y(), r.x());
+      return Eigen::Vector2d(bf.q.head<2>() + r);
+    };
+    Eigen::Vector2d vi, vj;
+    const Eigen::Vector2d pi = world_point(spring_body_i_[k], spring_point_i_[k], vi);
+    const Eigen::Vector2d pj = world_point(spring_body_j_[k], spring_point_j_[k], vj);
+    const double length = (pj - pi).norm();
+    require(length > 0, "link '{}' at t = {:.6g} s: spring '{}' has zero length", link_.body, frame.t, sp.name);
+    const Eigen::Vector2d e = (pj - pi) / length;
+    const mech::Spring& model_spring = model_springs_[k];
+    const double tension = model_spring.stiffness_N_per_m * (length - model_spring.free_length_m) +
+                           model_spring.damping_Ns_per_m * e.dot(vj - vi);
+    const Eigen::Vector3d force = R_T * lift(sp.on_i ? Eigen::Vector2d(tension * e) : Eigen::Vector2d(-tension * e));
+    sp.coupling->add(force, Eigen::Vector3d::Zero(), sp.point_body, out.forces);
+    magnitude += force.norm();
+  }
+  for (const auto& pf : point_forces_) {
+    const Eigen::Vector3d force = R_T * pf.force_world;
+    pf.coupling->add(force, Eigen::Vector3d::Zero(), pf.point_body, out.forces);
+    magnitude += force.norm();
   }
 
   Eigen::Vector3d F, M;

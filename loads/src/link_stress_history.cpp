@@ -1,5 +1,7 @@
 #include "kinetofem/loads/link_stress_history.hpp"
 
+#include "kinetofem/solver/rigid_body.hpp"
+
 #include <algorithm>
 
 #include "kinetofem/core/error.hpp"
@@ -64,9 +66,10 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
       clock.restart();
       const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
       // Deformation measure: the elastic displacement without the rigid-body
-      // part the 3-2-1 support's arbitrary nodes put into it.
-      const Eigen::VectorXd magnitude =
-          fem::displacement_magnitude(fem::remove_rigid_body_motion(model.mesh, u));
+      // part the 3-2-1 support's arbitrary nodes put into it (computed once:
+      // the callback gets the same field).
+      const fem::DisplacementField elastic = fem::remove_rigid_body_motion(model.mesh, u);
+      const Eigen::VectorXd magnitude = fem::displacement_magnitude(elastic);
       const bool in_envelope = options.envelope_steps == 0 || step < options.envelope_steps;
       for (fem::Index i = 0; in_envelope && i < nodes; ++i) {
         if (stress.von_mises_pa[i] > env.max_von_mises_pa[i]) {
@@ -79,7 +82,7 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
         }
       }
       env.recovery_seconds += clock.seconds();
-      if (on_step) on_step(step, u, stress);
+      if (on_step) on_step(step, elastic, stress);
       progress.advance(long(step + 1));
     }
   }

@@ -67,7 +67,7 @@ MultibodyModel make_manipulator_model(const ManipulatorDefinition& d) {
     m.joints.push_back({"B0", JointType::Revolute, "frame", "B0", "rocker", "origin"});
   }
   MotionDrive drive;
-  drive.name = "lever drive";
+  drive.name = "lever_drive";
   drive.coordinate = {CoordinateType::Angle, "frame", "origin", "lever", "origin", {1, 0}};
   drive.law = d.lever_motion;
   drive.initial = 0.0;

@@ -9,6 +9,7 @@
 #include <cvodes/cvodes_ls.h>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/mechanisms/time_grid.hpp"
 #include "multibody/sundials_objects.hpp"
 
 namespace kinetofem::mech {
@@ -224,8 +225,7 @@ Vector3d spherical_drive_efforts(const SphericalDesign& design, const SphericalJ
 
 SphericalRun analyse_straight_line(const SphericalDesign& design, const StraightLineMotion& motion, int n) {
   require(n >= 2, "analyse_straight_line: need at least 2 intervals, got {}", n);
-  std::vector<double> times;
-  for (int k = 0; k <= n; ++k) times.push_back(motion.duration() * k / n);
+  std::vector<double> times = equally_spaced_times(motion.duration(), n + 1);  // ends exactly at the duration
   for (double b : motion.breakpoints()) times.push_back(b);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end(), [](double x, double y) { return std::abs(x - y) < 1e-12; }),

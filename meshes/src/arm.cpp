@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/meshes/geometry_text.hpp"
 
 namespace kinetofem::meshes {
 
@@ -111,29 +112,25 @@ ArmDimensions lever_coupler(double c_m, double h_m, double r_m) {
   return d;
 }
 
-std::filesystem::path arm_geometry_file() {
-  return std::filesystem::path(KINETOFEM_GEOMETRY_DIR) / "arm.geo";
-}
-
 fem::Mesh mesh_arm(const ArmDimensions& dimensions, const MeshOptions& options) {
   dimensions.validate();
-  return mesh_geometry(arm_geometry_file(), options,
-                       {{"Arm/with_roller", dimensions.with_roller ? 1.0 : 0.0},
-                        {"Arm/c", dimensions.length_m},
-                        {"Arm/h", dimensions.gripper_offset_m},
-                        {"Arm/r", dimensions.roller_radius_m},
-                        {"Arm/e_roller", dimensions.roller_thickness_m},
-                        {"Arm/d_B", dimensions.bore_b_offset_m},
-                        {"Arm/w", dimensions.arm_depth_m},
-                        {"Arm/t", dimensions.arm_thickness_m},
-                        {"Arm/d_bore", dimensions.bore_diameter_m},
-                        {"Arm/D_boss", dimensions.boss_diameter_m},
-                        {"Arm/L_boss", dimensions.boss_length_m},
-                        {"Arm/w_bracket", dimensions.bracket_width_m},
-                        {"Arm/t_bracket", dimensions.bracket_thickness_m},
-                        {"Arm/l_mount", dimensions.mount_length_m},
-                        {"Arm/w_mount", dimensions.mount_width_m},
-                        {"Arm/t_mount", dimensions.mount_thickness_m}});
+  return mesh_geometry_text("arm.geo", arm_geometry_text(), options,
+      {{"Arm/with_roller", dimensions.with_roller ? 1.0 : 0.0},
+       {"Arm/c", dimensions.length_m},
+       {"Arm/h", dimensions.gripper_offset_m},
+       {"Arm/r", dimensions.roller_radius_m},
+       {"Arm/e_roller", dimensions.roller_thickness_m},
+       {"Arm/d_B", dimensions.bore_b_offset_m},
+       {"Arm/w", dimensions.arm_depth_m},
+       {"Arm/t", dimensions.arm_thickness_m},
+       {"Arm/d_bore", dimensions.bore_diameter_m},
+       {"Arm/D_boss", dimensions.boss_diameter_m},
+       {"Arm/L_boss", dimensions.boss_length_m},
+       {"Arm/w_bracket", dimensions.bracket_width_m},
+       {"Arm/t_bracket", dimensions.bracket_thickness_m},
+       {"Arm/l_mount", dimensions.mount_length_m},
+       {"Arm/w_mount", dimensions.mount_width_m},
+       {"Arm/t_mount", dimensions.mount_thickness_m}});
 }
 
 }  // namespace kinetofem::meshes

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/meshes/geometry_text.hpp"
 
 namespace kinetofem::meshes {
 
@@ -35,19 +36,15 @@ double LeverDimensions::volume_m3() const {
          thickness_m * strip - 2 * pi * r * r * boss_length_m;
 }
 
-std::filesystem::path lever_geometry_file() {
-  return std::filesystem::path(KINETOFEM_GEOMETRY_DIR) / "lever.geo";
-}
-
 fem::Mesh mesh_lever(const LeverDimensions& dimensions, const MeshOptions& options) {
   dimensions.validate();
-  return mesh_geometry(lever_geometry_file(), options,
-                       {{"Lever/a", dimensions.length_m},
-                        {"Lever/w", dimensions.width_m},
-                        {"Lever/t", dimensions.thickness_m},
-                        {"Lever/d_bore", dimensions.bore_diameter_m},
-                        {"Lever/D_boss", dimensions.boss_diameter_m},
-                        {"Lever/L_boss", dimensions.boss_length_m}});
+  return mesh_geometry_text("lever.geo", lever_geometry_text(), options,
+      {{"Lever/a", dimensions.length_m},
+       {"Lever/w", dimensions.width_m},
+       {"Lever/t", dimensions.thickness_m},
+       {"Lever/d_bore", dimensions.bore_diameter_m},
+       {"Lever/D_boss", dimensions.boss_diameter_m},
+       {"Lever/L_boss", dimensions.boss_length_m}});
 }
 
 }  // namespace kinetofem::meshes

@@ -9,6 +9,7 @@
 
 #include <gmsh.h>
 
+#include "geometry_meshing.hpp"
 #include "gmsh_model.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
@@ -50,14 +51,14 @@ void apply_options(const MeshOptions& options) {
   gmsh::option::setNumber("General.NumThreads", 1);
 }
 
-std::string lower_extension(const std::filesystem::path& file) {
+}  // namespace
+
+std::string detail::lower_extension(const std::filesystem::path& file) {
   std::string extension = file.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   return extension;
 }
-
-}  // namespace
 
 namespace {
 
@@ -71,7 +72,8 @@ std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 14695981039346
 }
 
 std::string cache_key(const std::filesystem::path& file, const MeshOptions& options,
-                      const GeometryParameters& parameters) {
+                      const detail::GeometryJob& job) {
+  const GeometryParameters& parameters = job.parameters;
   std::ifstream in(file, std::ios::binary);
   std::stringstream content;
   content << in.rdbuf();
@@ -82,21 +84,31 @@ std::string cache_key(const std::filesystem::path& file, const MeshOptions& opti
   key += fmt::format("\nsize={:.17g} order={} family={} per_circle={} optimize={}",
                      options.element_size_m, options.order, int(options.family),
                      options.elements_per_circle, options.optimize);
+  key += job.cache_key_extra;
   return fmt::format("{}_{:016x}", file.stem().string(), fnv1a(key));
 }
 
 fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
-                                 const GeometryParameters& parameters);
+                                 const detail::GeometryJob& job);
 
 }  // namespace
 
 fem::Mesh mesh_geometry(const std::filesystem::path& file, const MeshOptions& options,
                         const GeometryParameters& parameters) {
+  detail::GeometryJob job;
+  job.parameters = parameters;
+  return detail::mesh_geometry_file(file, options, job);
+}
+
+fem::Mesh detail::mesh_geometry_file(const std::filesystem::path& file, const MeshOptions& options,
+                                     const GeometryJob& job) {
   options.validate();
+  require(std::isfinite(job.model_unit_m) && job.model_unit_m > 0,
+          "{}: the model unit {} m is not a positive length", file.string(), job.model_unit_m);
   if (options.cache_dir.empty() || !std::filesystem::is_regular_file(file))
-    return mesh_geometry_uncached(file, options, parameters);
+    return mesh_geometry_uncached(file, options, job);
   const std::filesystem::path cached =
-      options.cache_dir / (cache_key(file, options, parameters) + ".msh");
+      options.cache_dir / (cache_key(file, options, job) + ".msh");
   std::error_code error;
   if (std::filesystem::is_regular_file(cached, error)) {
     try {
@@ -105,7 +117,7 @@ fem::Mesh mesh_geometry(const std::filesystem::path& file, const MeshOptions& op
       // A damaged cache entry is not the user's problem: mesh again below.
     }
   }
-  fem::Mesh mesh = mesh_geometry_uncached(file, options, parameters);
+  fem::Mesh mesh = mesh_geometry_uncached(file, options, job);
   std::filesystem::create_directories(options.cache_dir, error);
   if (!error) {
     // Atomic: a half-written cache entry is never found under its name.
@@ -124,11 +136,12 @@ fem::Mesh mesh_geometry(const std::filesystem::path& file, const MeshOptions& op
 namespace {
 
 fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
-                                 const GeometryParameters& parameters) {
+                                 const detail::GeometryJob& job) {
+  const GeometryParameters& parameters = job.parameters;
   const std::string context = file.string();
   std::error_code error;
   require(std::filesystem::is_regular_file(file, error), "{}: no such geometry file", context);
-  const std::string extension = lower_extension(file);
+  const std::string extension = detail::lower_extension(file);
   const bool is_geo = extension == ".geo";
   const bool is_cad = extension == ".step" || extension == ".stp" || extension == ".iges" ||
                       extension == ".igs" || extension == ".brep";
@@ -143,9 +156,18 @@ fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOp
     session.call(context, fmt::format("setting parameter '{}'", parameter.first),
                  [&] { gmsh::onelab::setNumber(parameter.first, {parameter.second}); });
   if (is_geo) {
-    session.call(context, "gmsh::open", [&] { gmsh::open(context); });
+    session.call(context, "gmsh::open", [&] {
+      // OpenCASCADE keeps its STEP/IGES target unit ("xstep.cascade.unit") in
+      // process-wide state that gmsh::finalize does not reset, and Gmsh sets
+      // it only when this option is not empty: after a STEP import in metres
+      // (below), a script's Merge/ShapeFromFile of a STEP would then also come
+      // in metres. Set OpenCASCADE's own default (mm) explicitly, so a script
+      // reads what it reads in a fresh gmsh; it may set the option itself.
+      gmsh::option::setString("Geometry.OCCTargetUnit", "MM");
+      gmsh::open(context);
+    });
   } else {
-    session.call(context, "importing the shape", [&] {
+    const auto shape_count = session.call(context, "importing the shape", [&] {
       if (extension != ".brep") gmsh::option::setString("Geometry.OCCTargetUnit", "M");
       gmsh::vectorpair shapes;
       gmsh::model::occ::importShapes(context, shapes);
@@ -155,7 +177,11 @@ fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOp
       std::vector<int> tags;
       for (const auto& [dim, tag] : volumes) tags.push_back(tag);
       if (!tags.empty()) gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, tags), "body");
+      return shapes.size();
     });
+    // OpenCASCADE's BREP reader fails silently (it only prints to stdout).
+    require(shape_count > 0, "{}: OpenCASCADE read no shape from the file (not a valid {} file?)",
+            context, extension);
   }
   const auto volume_count = session.call(context, "gmsh::model::getEntities", [&] {
     gmsh::vectorpair volumes;
@@ -164,11 +190,18 @@ fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOp
   });
   require(volume_count > 0, "{}: the geometry has no volumes to mesh", context);
 
+  if (job.before_meshing) job.before_meshing(session, context);
+
+  // The model is in its own unit (job.model_unit_m metres): mesh with the
+  // element size in that unit and scale the nodes to metres afterwards.
+  MeshOptions in_model_unit = options;
+  in_model_unit.element_size_m = options.element_size_m / job.model_unit_m;
   session.call(context, "meshing", [&] {
-    apply_options(options);
+    apply_options(in_model_unit);
     gmsh::model::mesh::generate(3);
   });
   auto mesh = detail::mesh_from_model(session, context);
+  if (job.model_unit_m != 1.0) mesh.nodes *= job.model_unit_m;
   mesh.validate();
   return mesh;
 }

@@ -6,6 +6,8 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <set>
+#include <string>
 
 #include <Eigen/Geometry>
 #include <cairo.h>
@@ -537,8 +539,27 @@ void draw_curves(cairo_t* cr, const Axes& frame, const std::vector<Curve>& curve
   }
 }
 
-// "reaction_A0_on_lever" -> "|R| A0 on lever"; "chain_tension" -> "chain tension".
-std::string legend_label(const std::string& name, bool magnitude) {
+// The legend label of a mechanism history to plot, or "" to leave it out.
+// Files of kinetofem >= 0.2 name histories joint.<j>.on_<b>.force_world,
+// chain.<c>.tension, drive.<d>.effort (pipeline/histories.hpp); one side of
+// each joint is enough (the other carries the same magnitude). Older files:
+// reaction_<j>_on_<b>, chain_tension, drive_torque.
+std::string legend_label(const std::string& name, bool magnitude, std::set<std::string>& joints_seen) {
+  auto field = [&](int k) {
+    std::size_t start = 0;
+    for (int i = 0; i < k; ++i) start = name.find('.', start) + 1;
+    return name.substr(start, name.find('.', start) - start);
+  };
+  if (name.rfind("joint.", 0) == 0) {
+    if (name.size() < 12 || name.compare(name.size() - 12, 12, ".force_world") != 0) return "";
+    if (!joints_seen.insert(field(1)).second) return "";
+    return "|R| joint " + field(1);
+  }
+  if (name.rfind("chain.", 0) == 0)
+    return name.size() > 8 && name.compare(name.size() - 8, 8, ".tension") == 0 ? "chain " + field(1) + " tension" : "";
+  if (name.rfind("drive.", 0) == 0)
+    return name.size() > 7 && name.compare(name.size() - 7, 7, ".effort") == 0 ? "drive " + field(1) : "";
+  if (name.find('.') != std::string::npos) return "";  // body., energy., check., point.: not loads
   std::string s = name;
   if (s.rfind("reaction_", 0) == 0) s = "R " + s.substr(9);
   for (auto pos = s.find('_'); pos != std::string::npos; pos = s.find('_')) s[pos] = ' ';
@@ -551,12 +572,15 @@ std::string legend_label(const std::string& name, bool magnitude) {
 void write_mechanism_loads_picture(const ResultsFile& results, const std::filesystem::path& png,
                                    const PictureOptions& options) {
   std::vector<Curve> forces, torques;
+  std::set<std::string> joints_seen;
   for (const auto& name : results.histories()) {
     const TimeHistory h = mechanism_history(results, name);
     if (h.units != "N" && h.units != "N*m") continue;
     const bool magnitude = h.values.cols() > 1;
+    const std::string label = legend_label(name, magnitude, joints_seen);
+    if (label.empty()) continue;
     const Eigen::VectorXd y = magnitude ? h.magnitude() : Eigen::VectorXd(h.values.col(0));
-    Curve c{legend_label(name, magnitude), h.time_s, std::vector<double>(y.data(), y.data() + y.size()), {}, false};
+    Curve c{label, h.time_s, std::vector<double>(y.data(), y.data() + y.size()), {}, false};
     (h.units == "N" ? forces : torques).push_back(std::move(c));
   }
   require(!forces.empty() || !torques.empty(), "'{}' has no mechanism history in N or N*m to plot",
@@ -603,7 +627,9 @@ void write_path_picture(const ResultsFile& results, const std::filesystem::path&
 
   Canvas canvas(options.width_px, options.height_px);
   cairo_t* cr = canvas.cr();
-  const std::string point = history.rfind("gripper_point_", 0) == 0 ? "gripper point " + history.substr(14) : history;
+  const std::string point = history.rfind("gripper_point_", 0) == 0 ? "gripper point " + history.substr(14)
+                            : history.rfind("point.", 0) == 0      ? "point " + history.substr(6)
+                                                                  : history;
   title(cr, canvas, fmt::format("{}: path of the {} over the motion", case_name(results, options), point),
         fmt::format("x-y plane of the mechanism, equal scales; {:.2f} .. {:.2f} s, dots every tenth of the motion time",
                     h.time_s.front(), h.time_s.back()));

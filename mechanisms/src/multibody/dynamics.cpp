@@ -1,6 +1,8 @@
 #include "kinetofem/mechanisms/multibody/dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 #include <cvodes/cvodes.h>
@@ -56,6 +58,11 @@ double motion_drive_power(const MultibodySystem& system, const VectorXd& q, cons
     p += -lambda(blk.first_row) * system.coordinate(c, q, qd).rate;
   }
   return p;
+}
+
+void require_options(const DynamicsOptions& options) {
+  require(std::isfinite(options.initial_step_s) && options.initial_step_s >= 0.0,
+          "dynamics: initial_step_s must be >= 0 s (0: automatic), got {}", options.initial_step_s);
 }
 
 void require_times(const std::vector<double>& times) {
@@ -216,6 +223,23 @@ int minimal_rhs(double t, N_Vector yy, N_Vector ydot, void* user_data) {
   }
 }
 
+// Automatic first step of both paths (dynamics.hpp): the step whose change
+// 0.5 h^2 y'' of the error-tested components is a quarter of their tolerance in
+// the worst component, within [1e-9, 1e-3] of the first output interval.
+double automatic_first_step(const VectorXd& y, const VectorXd& y_ddot, const VectorXd& absolute_tolerance,
+                            double relative_tolerance, double t0, double t1) {
+  double curvature = 0.0;  // max |y''| / tolerance, 1/s^2
+  for (Eigen::Index i = 0; i < y.size(); ++i)
+    curvature =
+        std::max(curvature, std::abs(y_ddot(i)) / (relative_tolerance * std::abs(y(i)) + absolute_tolerance(i)));
+  const double interval = t1 - t0;
+  const double upper = 1e-3 * interval;
+  const double lower = std::max(1e-9 * interval, 100.0 * std::numeric_limits<double>::epsilon() *
+                                                     std::max(std::abs(t0), std::abs(t1)));
+  if (!(curvature > 0.0) || !std::isfinite(curvature)) return upper;
+  return std::clamp(0.5 * std::sqrt(2.0 / curvature), lower, upper);
+}
+
 std::string failure_context(double t, const std::string& error) {
   return fmt::format("t = {} s{}{}", t, error.empty() ? "" : "; ", error);
 }
@@ -224,6 +248,7 @@ std::string failure_context(double t, const std::string& error) {
 
 Results simulate_ggl(const MultibodySystem& system, const std::vector<double>& times, const DynamicsOptions& options) {
   require_times(times);
+  require_options(options);
   const int n = system.n_coordinates(), m = system.n_constraints();
   const InitialState init = consistent_initial_state(system, times.front(), options);
   const FrameOptions frame_options{options.singular_tolerance, options.slack_is_error};
@@ -240,8 +265,8 @@ Results simulate_ggl(const MultibodySystem& system, const std::vector<double>& t
   // along the motion keeps the first steps from starting with an O(1) error in them.
   const double dt = 1e-7 * std::max(1.0, times.back() - times.front());
   const VectorXd q_next = init.q + dt * init.qd, qd_next = init.qd + dt * init.acc.q_ddot;
-  const VectorXd lambda_rate = (solve_accelerations(system, q_next, qd_next, times.front() + dt).lambda -
-                                init.acc.lambda) / dt;
+  const Accelerations acc_next = solve_accelerations(system, q_next, qd_next, times.front() + dt);
+  const VectorXd lambda_rate = (acc_next.lambda - init.acc.lambda) / dt;
   yp.map() << init.qd, init.acc.q_ddot, lambda_rate, VectorXd::Zero(m);
   id.map() << VectorXd::Ones(2 * n), VectorXd::Zero(2 * m);
 
@@ -271,6 +296,27 @@ Results simulate_ggl(const MultibodySystem& system, const std::vector<double>& t
   sundials_check(IDASetQuadErrCon(ida.mem, SUNTRUE), "IDASetQuadErrCon");
   sundials_check(IDAQuadSStolerances(ida.mem, options.relative_tolerance, options.absolute_tolerance * force_scale),
                  "IDAQuadSStolerances");
+  // First step: IDAS's own, 0.5 / ||y'||_WRMS, is ~1e-16 s for a fast start
+  // from rest (dynamics.hpp); ours bounds the second-order change instead. The
+  // error-tested components are (q, v, work integrals); their second
+  // derivatives (q'', q''', power rates) come from the forward difference above.
+  double first_step = options.initial_step_s;
+  if (first_step <= 0.0) {
+    const auto powers = [&](const VectorXd& q, const VectorXd& qd, const VectorXd& lambda, double t) {
+      return Eigen::Vector2d(motion_drive_power(system, q, qd, lambda) + system.force_drive_power(q, qd, t),
+                             system.other_power(q, qd));
+    };
+    const Eigen::Vector2d power_rate = (powers(q_next, qd_next, acc_next.lambda, times.front() + dt) -
+                                        powers(init.q, init.qd, init.acc.lambda, times.front())) / dt;
+    VectorXd tested(2 * n + 2), tested_ddot(2 * n + 2), tested_tolerance(2 * n + 2);
+    tested << init.q, init.qd, 0.0, 0.0;
+    tested_ddot << init.acc.q_ddot, (acc_next.q_ddot - init.acc.q_ddot) / dt, power_rate;
+    tested_tolerance << VectorXd::Constant(2 * n, options.absolute_tolerance),
+        Eigen::Vector2d::Constant(options.absolute_tolerance * force_scale);
+    first_step = automatic_first_step(tested, tested_ddot, tested_tolerance, options.relative_tolerance,
+                                      times.front(), times[1]);
+  }
+  sundials_check(IDASetInitStep(ida.mem, first_step), "IDASetInitStep");
 
   for (std::size_t k = 1; k < times.size(); ++k) {
     double t_reached = times[k - 1];
@@ -279,6 +325,9 @@ Results simulate_ggl(const MultibodySystem& system, const std::vector<double>& t
       // A failing step is often a singular position: say how close the last state is to one.
       const VectorXd q_last = y.map().head(n);
       std::string context = failure_context(t_reached, problem.error);
+      double first = 0.0, step = 0.0;
+      if (IDAGetActualInitStep(ida.mem, &first) >= 0 && IDAGetCurrentStep(ida.mem, &step) >= 0)
+        context += fmt::format("; first step {:.3e} s, last step tried {:.3e} s", first, step);
       try {
         context += fmt::format("; constraint Jacobian condition {:.3e} there", jacobian_condition(system, q_last, t_reached));
       } catch (const std::exception&) {
@@ -296,6 +345,7 @@ Results simulate_ggl(const MultibodySystem& system, const std::vector<double>& t
   RunSummary& s = results.summary;
   long value = 0;
   sundials_check(IDAGetNumSteps(ida.mem, &s.steps), "IDAGetNumSteps");
+  sundials_check(IDAGetActualInitStep(ida.mem, &s.first_step_s), "IDAGetActualInitStep");
   sundials_check(IDAGetNumResEvals(ida.mem, &s.residual_evaluations), "IDAGetNumResEvals");
   sundials_check(IDAGetNumJacEvals(ida.mem, &s.jacobian_evaluations), "IDAGetNumJacEvals");
   sundials_check(IDAGetNumErrTestFails(ida.mem, &s.error_test_failures), "IDAGetNumErrTestFails");
@@ -308,6 +358,7 @@ Results simulate_ggl(const MultibodySystem& system, const std::vector<double>& t
 Results simulate_minimal(const MultibodySystem& system, const RelativeCoordinate& coordinate,
                          const std::vector<double>& times, const DynamicsOptions& options) {
   require_times(times);
+  require_options(options);
   const int n = system.n_coordinates(), m = system.n_constraints();
   require(n - m == 1, "minimal-coordinate path: model '{}' has {} coordinates and {} constraints, needs exactly 1 DoF",
           system.model().name, n, m);
@@ -335,6 +386,23 @@ Results simulate_minimal(const MultibodySystem& system, const RelativeCoordinate
   sundials_check(CVodeSetLinearSolver(cvode.mem, dense.solver, dense.matrix), "CVodeSetLinearSolver");
   sundials_check(CVodeSetMaxNumSteps(cvode.mem, options.max_steps), "CVodeSetMaxNumSteps");
   if (options.max_step_s > 0.0) sundials_check(CVodeSetMaxStep(cvode.mem, options.max_step_s), "CVodeSetMaxStep");
+  // First step: CVODES's own bounds the forward-Euler change h y' like IDAS's
+  // (~1e-17 s for a fast start from rest, harmless for the ODE but wasteful);
+  // the automatic rule of the IDAS path instead (dynamics.hpp), on y = (s, s',
+  // work integrals) with y'' = (s'', s''', power rates) by a forward difference.
+  double first_step = options.initial_step_s;
+  if (first_step <= 0.0) {
+    const double dt = 1e-7 * std::max(1.0, times.back() - times.front());
+    const MinimalState st0 = minimal_state(problem, times.front(), cv0.value, cv0.rate);
+    const MinimalState st1 =
+        minimal_state(problem, times.front() + dt, cv0.value + dt * cv0.rate, cv0.rate + dt * st0.s_ddot);
+    problem.q_cache = init.q;
+    Eigen::Vector4d tested_ddot(st0.s_ddot, (st1.s_ddot - st0.s_ddot) / dt,
+                                (st1.power_drives - st0.power_drives) / dt, (st1.power_other - st0.power_other) / dt);
+    first_step = automatic_first_step(y.map(), tested_ddot, VectorXd::Constant(4, options.absolute_tolerance),
+                                      options.relative_tolerance, times.front(), times[1]);
+  }
+  sundials_check(CVodeSetInitStep(cvode.mem, first_step), "CVodeSetInitStep");
 
   for (std::size_t k = 1; k < times.size(); ++k) {
     double t_reached = times[k - 1];
@@ -348,6 +416,7 @@ Results simulate_minimal(const MultibodySystem& system, const RelativeCoordinate
   }
   RunSummary& s = results.summary;
   sundials_check(CVodeGetNumSteps(cvode.mem, &s.steps), "CVodeGetNumSteps");
+  sundials_check(CVodeGetActualInitStep(cvode.mem, &s.first_step_s), "CVodeGetActualInitStep");
   sundials_check(CVodeGetNumRhsEvals(cvode.mem, &s.residual_evaluations), "CVodeGetNumRhsEvals");
   sundials_check(CVodeGetNumJacEvals(cvode.mem, &s.jacobian_evaluations), "CVodeGetNumJacEvals");
   sundials_check(CVodeGetNumErrTestFails(cvode.mem, &s.error_test_failures), "CVodeGetNumErrTestFails");

@@ -214,7 +214,7 @@ TEST(LinkageErrors, MechanismThatCannotBeAssembledNamesTheTime) {
       with_drive("coordinate = \"displacement\"\nbody_i = \"frame\"\nbody_j = \"lever\"\npoint_j = \"tip\"\n"
                  "law = \"polynomial345\"\nstroke_mm = 100\nduration_s = 1\n"),
       true);
-  EXPECT_NE(message.find("the linkage cannot be run"), std::string::npos) << message;
+  EXPECT_NE(message.find("the motion cannot be run"), std::string::npos) << message;
   EXPECT_NE(message.find("at t = "), std::string::npos) << message;
 }
 

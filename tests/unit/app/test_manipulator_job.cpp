@@ -38,7 +38,7 @@ TEST(ManipulatorJob, LeverChainRunWritesEveryLinkOverTheMotion) {
   // The motion starts from rest at the design position, which is the static
   // study's pose: the two stress states are the same (round-off).
   for (const auto& link : s.links) {
-    EXPECT_GE(link.peak_von_mises_pa, link.static_von_mises_pa * (1 - 1e-9)) << link.link;
+    EXPECT_GE(link.peak_von_mises_pa, link.static_von_mises_pa * (1 - 1e-9)) << link.body;
   }
   const auto file = post::ResultsFile::open(options.output_dir / "m.h5");
   const auto bodies = file.bodies();
@@ -65,8 +65,8 @@ TEST(ManipulatorJob, FactorAboveTheLimitSwitchesToTheIterativeSolverWithTheSameR
   const ManipulatorSummary a = run_manipulator(automatic, quiet_options("kinetofem_manip_auto"));
   ASSERT_EQ(d.links.size(), a.links.size());
   for (size_t k = 0; k < d.links.size(); ++k) {
-    EXPECT_FALSE(d.links[k].iterative_solver) << d.links[k].link;
-    EXPECT_TRUE(a.links[k].iterative_solver) << a.links[k].link;
+    EXPECT_FALSE(d.links[k].iterative_solver) << d.links[k].body;
+    EXPECT_TRUE(a.links[k].iterative_solver) << a.links[k].body;
     EXPECT_NE(a.links[k].solver_summary.find("AMG-PCG"), std::string::npos) << a.links[k].solver_summary;
     EXPECT_NEAR(a.links[k].peak_von_mises_pa, d.links[k].peak_von_mises_pa, 1e-6 * d.links[k].peak_von_mises_pa);
     EXPECT_NEAR(a.links[k].peak_displacement_m, d.links[k].peak_displacement_m,
@@ -81,7 +81,7 @@ TEST(ManipulatorJob, LeverManipulatorHasThreeLinks) {
   const RunOptions options = quiet_options("kinetofem_manip_lever");
   const ManipulatorSummary s = run_manipulator(c, options);
   ASSERT_EQ(s.links.size(), 3u);
-  EXPECT_EQ(s.links[2].link, "rocker");
+  EXPECT_EQ(s.links[2].body, "rocker");
 }
 
 TEST(ManipulatorJob, FourBarDrivenPastItsAssemblyLimitIsAClearError) {

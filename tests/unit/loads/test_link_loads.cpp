@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 
+#include "kinetofem/solver/rigid_body.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/mechanisms/motion_law.hpp"

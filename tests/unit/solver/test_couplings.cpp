@@ -8,6 +8,7 @@
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/solver/assembly.hpp"
 #include "kinetofem/solver/couplings.hpp"
+#include "kinetofem/solver/rigid_body.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
 

@@ -15,14 +15,16 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/multibody/dynamics.hpp"
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
+#include "kinetofem/verification/spec1_lever_chain.hpp"
 
 namespace kinetofem::mech {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-// SPEC §1 example: a = 0.5, c = 0.35, r = 0.075 m, b0 = a c / (c + r).
-constexpr double kA = 0.5, kR = 0.075, kC = 0.35;
-const double kB0 = kA * kC / (kC + kR);
+// SPEC §1 example (kinetofem/verification/spec1_lever_chain.hpp): a = 0.5,
+// c = 0.35, r = 0.075 m, b0 = a c / (c + r).
+const LeverChainGeometry kExample = verification::spec1::example_geometry();
+const double kA = kExample.a_m, kR = kExample.r_m, kC = kExample.c_m, kB0 = kExample.b0_m;
 
 MultibodyModel four_bar(std::shared_ptr<const MotionLaw> law, Eigen::Vector2d gravity, double lever_speed = 0.0) {
   MultibodyModel m;

@@ -9,52 +9,28 @@
 #include <gtest/gtest.h>
 
 #include "kinetofem/mechanisms/multibody/dynamics.hpp"
+#include "kinetofem/verification/pendulum.hpp"
 
 namespace kinetofem::mech {
 namespace {
 
+namespace kv = kinetofem::verification;
 constexpr double kPi = std::numbers::pi;
-constexpr double kG = 9.80665;
+constexpr double kG = kv::kPendulumGravity;
 
-struct Rod {
-  double mass = 2.0, length = 1.0;
-  double inertia() const { return mass * length * length / 12.0; }
-};
-
-// A rod pinned at its body-frame origin to the ground origin, released from
-// rest at amplitude `amplitude` from the downward vertical.
-MultibodyModel compound_pendulum(const Rod& rod, double amplitude) {
-  MultibodyModel m;
-  m.name = "compound pendulum";
-  m.characteristic_length_m = rod.length;
-  Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  Body bar;
-  bar.name = "rod";
-  bar.mass_kg = rod.mass;
-  bar.inertia_kgm2 = rod.inertia();
-  bar.com_body = {0.5 * rod.length, 0.0};
-  bar.pose = {0.0, 0.0, -0.5 * kPi + amplitude};
-  m.bodies = {ground, bar};
-  m.joints.push_back(make_revolute("pivot", "ground", "origin", "rod", "origin"));
-  m.gravity = {0.0, -kG};
-  return m;
-}
-
+// The compound pendulum, its exact period and both checks below are those of
+// `kinetofem verify` (kinetofem/verification/pendulum.hpp): a rod 2 kg, 1 m
+// pinned at one end, released from rest.
 TEST(DynamicsPendulum, PeriodMatchesEllipticIntegral) {
-  const Rod rod;
+  const kv::Rod rod;
   const double amplitude = 60.0 * kPi / 180.0;
-  const MultibodySystem sys(compound_pendulum(rod, amplitude));
   // Reference: T = 4 sqrt(I_O / (m g d)) K(sin(amplitude/2)), d = l/2, I_O = m l^2/3.
-  const double d = 0.5 * rod.length, inertia_pivot = rod.inertia() + rod.mass * d * d;
-  const double period = 4.0 * std::sqrt(inertia_pivot / (rod.mass * kG * d)) * std::comp_ellint_1(std::sin(0.5 * amplitude));
-  const Results res = simulate_ggl(sys, {0.0, 0.25 * period, 0.5 * period, period});
+  const kv::PendulumRun run = kv::run_compound_pendulum(rod, amplitude);
+  const Results& res = run.results;
   const Frame& half = res.frames[2];
   // At T/2 the rod is at the other extreme: omega = 0. The zero crossing of omega
   // is at t* = T/2 - omega/alpha (one Newton step); 2 t* is the computed period.
-  const double omega = half.q_dot(2), alpha = half.q_ddot(2);
-  const double period_computed = 2.0 * (half.t - omega / alpha);
+  const double period = run.exact_period_s, period_computed = run.computed_period_s;
   std::printf("pendulum 60 deg: period %.12f s, exact (elliptic) %.12f s, rel. error %.2e\n%s", period_computed, period,
               period_computed / period - 1.0, res.format_checks().c_str());
   // Tolerance: IDAS relative tolerance 1e-10 -> period error ~1e-9 relative; 1e-7 allowed.
@@ -69,28 +45,19 @@ TEST(DynamicsPendulum, PeriodMatchesEllipticIntegral) {
   // Pivot reaction at the extreme (omega = 0): radial equilibrium gives
   // |F_radial| = m g cos(amplitude) along the rod (exact for omega = 0).
   const Reaction& on_rod = half.joints[0].on_j;
-  EXPECT_NEAR(on_rod.force_body.x(), -rod.mass * kG * std::cos(amplitude), 1e-5);
+  EXPECT_NEAR(on_rod.force_body.x(), -rod.mass_kg * kG * std::cos(amplitude), 1e-5);
   EXPECT_NEAR(on_rod.moment_Nm, 0.0, 1e-9);
 }
 
 TEST(DynamicsPendulum, IdasAndCvodesPathsAgree) {
-  const Rod rod;
-  const MultibodySystem sys(compound_pendulum(rod, 1.2));
-  std::vector<double> times;
-  for (int k = 0; k <= 20; ++k) times.push_back(0.1 * k);
-  const Results ggl = simulate_ggl(sys, times);
-  const Results minimal = simulate_minimal(sys, {CoordinateType::Angle, "ground", "origin", "rod", "origin", {1, 0}}, times);
+  const kv::PendulumAgreement agreement = kv::idas_vs_cvodes(kv::Rod{}, 1.2);
+  const Results& ggl = agreement.ggl;
+  const Results& minimal = agreement.minimal;
   ASSERT_EQ(ggl.frames.size(), minimal.frames.size());
-  double worst_angle = 0.0, worst_force = 0.0;
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    worst_angle = std::max(worst_angle, std::abs(ggl.frames[k].q(2) - minimal.frames[k].q(2)));
-    const Eigen::Vector2d f1 = ggl.frames[k].joints[0].on_j.force_world, f2 = minimal.frames[k].joints[0].on_j.force_world;
-    worst_force = std::max(worst_force, (f1 - f2).norm() / (rod.mass * kG));
-  }
-  std::printf("pendulum IDAS vs CVODES: angle %.2e rel, pivot force %.2e rel\n", worst_angle / 1.2, worst_force);
+  std::printf("pendulum IDAS vs CVODES: angle %.2e rel, pivot force %.2e rel\n", agreement.angle, agreement.force);
   // Issue 3: both paths agree to 1e-6 relative (amplitude 1.2 rad, weight m g).
-  EXPECT_LT(worst_angle / 1.2, 1e-6) << ggl.format_checks() << minimal.format_checks();
-  EXPECT_LT(worst_force, 1e-6);
+  EXPECT_LT(agreement.angle, 1e-6) << ggl.format_checks() << minimal.format_checks();
+  EXPECT_LT(agreement.force, 1e-6);
   EXPECT_LT(minimal.summary.energy_balance_error, 1e-8);
 }
 

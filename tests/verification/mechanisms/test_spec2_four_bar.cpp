@@ -8,12 +8,15 @@
 
 #include "kinetofem/mechanisms/four_bar.hpp"
 #include "kinetofem/mechanisms/lever_chain.hpp"
+#include "kinetofem/verification/spec1_lever_chain.hpp"
+#include "kinetofem/verification/spec2_four_bar.hpp"
 
 namespace km = kinetofem::mech;
+namespace kv = kinetofem::verification;
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
-km::LeverChainGeometry example() { return km::make_lever_chain_geometry(0.5, 0.35, 0.1, 0.075); }
+km::LeverChainGeometry example() { return kv::spec1::example_geometry(); }
 }  // namespace
 
 TEST(Spec2FourBar, EquivalentToLeverChainUpToSecondOrderAtDesign) {
@@ -70,11 +73,10 @@ TEST(Spec2FourBar, ExampleIsNonGrashofWithAssemblyLimits) {
     const double mu = fb.pose(lim).transmission_angle_rad;
     EXPECT_LT(std::min(mu, std::numbers::pi - mu), 1e-4);
   }
-  // Closed-form check of the limits: |A(phi) B0|^2 = a^2 + l0^2 - 2 a l0 cos(phi - angle(B0)).
-  const double ang_b0 = g.alpha0_rad;
+  // Closed-form check of the limits: |A(phi) B0|^2 = a^2 + l0^2 - 2 a l0 cos(phi - alpha0)
+  // (kinetofem/verification/spec2_four_bar.hpp).
   for (double lim : {r.lo_rad, r.hi_rad}) {
-    const double dist = std::sqrt(g.a_m * g.a_m + g.l0_m * g.l0_m -
-                                  2 * g.a_m * g.l0_m * std::cos(lim - ang_b0));
+    const double dist = kv::spec2::crank_pin_to_b0_m(g, lim);
     const double to_bound = std::min(std::abs(dist - (g.r_m + g.b0_m)),
                                      std::abs(dist - std::abs(g.r_m - g.b0_m)));
     EXPECT_LT(to_bound, 1e-11);

@@ -15,6 +15,7 @@
 #include "kinetofem/mechanisms/motion_law.hpp"
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/mechanisms/spherical_manipulator.hpp"
+#include "kinetofem/verification/spec5_spherical.hpp"
 
 namespace kinetofem::mech {
 namespace {
@@ -56,50 +57,20 @@ TEST(Spec5Spherical, StaticDriveLoadsByHand) {
   EXPECT_NEAR(s.total_power_W, 0.0, 0.0);
 }
 
-// Composite Simpson of the total drive power over each segment of the law
-// (the power jumps at the breakpoints, it is smooth inside).
-double drive_work(const SphericalDesign& d, const StraightLineMotion& motion) {
-  const std::vector<double> br = motion.breakpoints();
-  double work = 0.0;
-  for (std::size_t s = 0; s + 1 < br.size(); ++s) {
-    const int n = 200;
-    const double t0 = br[s], t1 = br[s + 1], h = (t1 - t0) / n;
-    auto power = [&](double t) {
-      // inside the segment, away from the jump
-      const double tt = std::clamp(t, t0 + 1e-12 * (t1 - t0), t1 - 1e-12 * (t1 - t0));
-      const StraightLineMotion::Point p = motion.at(tt);
-      return spherical_inverse_dynamics(d, spherical_joint_motion(d, p.m, p.m_dot, p.m_ddot)).total_power_W;
-    };
-    double sum = power(t0) + power(t1);
-    for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * power(t0 + k * h);
-    work += sum * h / 3.0;
-  }
-  return work;
-}
-
 TEST(Spec5Spherical, DriveWorkEqualsPotentialEnergyChange) {
+  // Rest to rest, 20 kg, (1.4, -0.7, 0.5) -> (1.2, 0.8, 0.9) m (inside the
+  // zones of A, C and E): the drives' work (Simpson) is the potential energy
+  // gained by the arm and the payload. The computation is that of `kinetofem
+  // verify` spec5.drive_work (kinetofem/verification/spec5_spherical.hpp).
   for (char name : {'A', 'C', 'E'}) {
-    const double payload = 20.0;
-    const SphericalDesign d = size_spherical_manipulator(spherical_variant(name), payload);
-    const Eigen::Vector3d a(1.4, -0.7, 0.5), b(1.2, 0.8, 0.9);  // inside the zones of A, C and E
-    const StraightLineMotion motion(a, b, d.variant.speed_mps, d.variant.k_accel, d.variant.k_decel);
-    const SphericalRun run = analyse_straight_line(d, motion, 60);  // also checks the service zone
-    // Rest to rest: the drives' work is the potential energy gained by the arm
-    // (centre of mass S3) and the payload (at M); column and sleeve do not rise.
-    const Eigen::Vector3d qa = spherical_inverse_kinematics(d, a), qb = spherical_inverse_kinematics(d, b);
-    auto z_s3 = [&](const Eigen::Vector3d& q) { return (q(2) - 0.5 * d.arm_length_m) * std::sin(q(1)); };
-    const double g = d.gravity_mps2;
-    const double dv = g * (d.variant.m3_kg * (z_s3(qb) - z_s3(qa)) + payload * (b.z() - a.z()));
-    double gross = 0.0;  // scale: the largest drive power times the duration
-    for (const SphericalDynamics& s : run.samples) gross = std::max(gross, std::abs(s.total_power_W));
-    gross *= motion.duration();
-    const double work = drive_work(d, motion);
+    const verification::spec5::WorkEnergyBalance b = verification::spec5::work_energy_balance(name);
+    const SphericalRun& run = b.run;
     std::printf("SPEC5 %c: T = %.4f s, drive work %.6f J, dV %.6f J, peaks M10d %.2f N m, M21d %.2f N m, F32d %.2f N, "
                 "power %.1f / %.1f / %.1f W\n",
-                name, motion.duration(), work, dv, run.peak_drive(0), run.peak_drive(1), run.peak_drive(2),
-                run.peak_power_W(0), run.peak_power_W(1), run.peak_power_W(2));
+                name, b.duration_s, b.work_J, b.potential_gain_J, run.peak_drive(0), run.peak_drive(1),
+                run.peak_drive(2), run.peak_power_W(0), run.peak_power_W(1), run.peak_power_W(2));
     // Reference: work-energy theorem; Simpson error ~1e-10 of the scale -> 1e-8.
-    EXPECT_NEAR(work, dv, 1e-8 * gross);
+    EXPECT_NEAR(b.work_J, b.potential_gain_J, verification::spec5::kWorkEnergyTolerance * b.scale_J);
   }
 }
 

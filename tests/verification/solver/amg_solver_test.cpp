@@ -11,22 +11,24 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/solver/amg_solver.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
-#include "kinetofem/testing/box_mesh.hpp"
+#include "kinetofem/verification/box_mesh.hpp"
 
 namespace kinetofem::fem {
 namespace {
+
+namespace kv = kinetofem::verification;
 
 // Cantilever 8:1:1 (1.6 m x 0.2 m x 0.2 m, steel) clamped on x = 0; the
 // element edges are perturbed at random so the mesh is not structured.
 FeModel cantilever(ElementType type, std::array<int, 3> divisions) {
   FeModel model;
-  testing::BoxMeshOptions options;
+  kv::BoxMeshOptions options;
   options.length_m = Eigen::Vector3d(1.6, 0.2, 0.2);
   options.divisions = divisions;
   options.type = type;
   options.random_perturbation = 0.2;
   options.seed = 7;
-  model.mesh = testing::box_mesh(options);
+  model.mesh = kv::box_mesh(options);
   model.material = IsotropicMaterial{"steel", 210e9, 0.3, 7850.0};
   model.supports = {{"clamp", model.mesh.node_set("x0"), {true, true, true},
                      Eigen::Vector3d::Zero()}};

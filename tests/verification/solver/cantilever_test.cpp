@@ -1,6 +1,6 @@
 // Cantilever under end shear (TET10, HEX20): tip deflection against
 // Timoshenko beam theory and the observed convergence rate of the compliance.
-// Problem, exact solution and FE model: kinetofem/testing/timoshenko_cantilever.hpp
+// Problem, exact solution and FE model: kinetofem/verification/timoshenko_cantilever.hpp
 // (L/D = 10, nu = 0, Cowper's kappa = 10(1+nu)/(12+11nu) = 5/6, exact
 // tractions on both end faces, no clamped corner, so the solution is smooth).
 // The finer study (h/2 .. h/8) is tests/large/cantilever_convergence_test.cpp.
@@ -8,20 +8,22 @@
 
 #include <cstdio>
 
-#include "kinetofem/testing/fe_probes.hpp"
-#include "kinetofem/testing/timoshenko_cantilever.hpp"
+#include "kinetofem/verification/fe_probes.hpp"
+#include "kinetofem/verification/timoshenko_cantilever.hpp"
 
 namespace kinetofem::fem {
 namespace {
 
+namespace kv = kinetofem::verification;
+
 class CantileverTest : public ::testing::TestWithParam<ElementType> {};
 
 TEST_P(CantileverTest, TipDeflectionAndComplianceConverge) {
-  const testing::TimoshenkoCantilever beam;
+  const kv::TimoshenkoCantilever beam;
   const double delta = beam.beam_deflection_m(), compliance = beam.exact_compliance_nm();
-  testing::CantileverSolution r[3];
+  kv::CantileverSolution r[3];
   for (int level = 0; level < 3; ++level) {
-    r[level] = testing::solve_cantilever(beam, GetParam(), 1 << level);
+    r[level] = kv::solve_cantilever(beam, GetParam(), 1 << level);
     std::printf("%s h/%d: %lld DoFs, deflection %.9e m (beam theory %.9e, error %+.2e), "
                 "compliance error %+.3e, %.2f s\n",
                 name_of(GetParam()), 1 << level, r[level].free_dofs, r[level].deflection_m, delta,
@@ -47,7 +49,7 @@ TEST_P(CantileverTest, TipDeflectionAndComplianceConverge) {
   // tests/large) 14.9, approaching 16 from below; here we assert the rate
   // is 4 within +-0.5 and tests/large asserts +-0.3 on h/2 .. h/8.
   const double order =
-      testing::observed_order(r[0].compliance_nm, r[1].compliance_nm, r[2].compliance_nm);
+      kv::observed_order(r[0].compliance_nm, r[1].compliance_nm, r[2].compliance_nm);
   std::printf("%s observed order of the compliance: %.3f (expected 4)\n", name_of(GetParam()),
               order);
   EXPECT_NEAR(order, 4.0, GetParam() == ElementType::Hex20 ? 0.3 : 0.5);

@@ -6,28 +6,28 @@
 
 #include <cmath>
 
-#include <Eigen/SparseCholesky>
-
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
-#include "kinetofem/solver/cholmod_solver.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
-#include "kinetofem/testing/box_mesh.hpp"
+#include "kinetofem/verification/box_mesh.hpp"
+#include "kinetofem/verification/direct_solvers.hpp"
 
 namespace kinetofem::fem {
 namespace {
+
+namespace kv = kinetofem::verification;
 
 const Eigen::Vector3d beam_length(0.6, 0.15, 0.1);
 
 FeModel clamped_beam(ElementType type, std::array<int, 3> divisions) {
   FeModel model;
-  testing::BoxMeshOptions options;
+  kv::BoxMeshOptions options;
   options.length_m = beam_length;
   options.divisions = divisions;
   options.type = type;
   options.random_perturbation = 0.15;
   options.seed = 3;
-  model.mesh = testing::box_mesh(options);
+  model.mesh = kv::box_mesh(options);
   model.material = IsotropicMaterial{"steel", 210e9, 0.3, 7850.0};
   model.supports = {{"clamp", model.mesh.node_set("x0"), {true, true, true},
                      Eigen::Vector3d::Zero()}};
@@ -45,29 +45,16 @@ LoadCase mixed_load() {
 bool all_finite(const DisplacementField& u) { return u.allFinite(); }
 
 TEST(LinearSolver, CholmodAgreesWithEigenSimplicialLdlt) {
-  const FeModel model = clamped_beam(ElementType::Hex20, {8, 3, 2});
-  const DofMap dofs(model.mesh.node_count(), model.supports);
-  const AssembledStiffness K = assemble_stiffness(model.mesh, model.material, dofs);
-  const Eigen::MatrixXd f = assemble_external_forces(model.mesh, model.material, {mixed_load()});
-  Eigen::VectorXd rhs(dofs.free_count());
-  for (Index d = 0; d < dofs.dof_count(); ++d)
-    if (dofs.equation(d) >= 0) rhs[dofs.equation(d)] = f(d, 0);
-  rhs -= K.prescribed_coupling_force;
-
-  CholmodSolver cholmod;
-  cholmod.analyze(K.free_free);
-  cholmod.factorize(K.free_free);
-  const Eigen::VectorXd x_cholmod = cholmod.solve(rhs);
-
-  Eigen::SimplicialLDLT<SymmetricUpperMatrix, Eigen::Upper> ldlt(K.free_free);
-  ASSERT_EQ(ldlt.info(), Eigen::Success);
-  const Eigen::VectorXd x_eigen = ldlt.solve(rhs);
+  // The comparison of `kinetofem verify` fem.cholmod_vs_ldlt
+  // (kinetofem/verification/direct_solvers.hpp), here on a clamped beam; an
+  // LDLT failure is an Error.
+  const kv::DirectSolverComparison c =
+      kv::compare_cholmod_with_ldlt(clamped_beam(ElementType::Hex20, {8, 3, 2}), mixed_load());
   // Reference: Eigen's SimplicialLDLT on the same K_ff and load; 1e-10 relative.
-  EXPECT_LT((x_cholmod - x_eigen).norm() / x_eigen.norm(), 1e-10);
+  EXPECT_LT(c.relative_difference, kv::kDirectSolverTolerance);
   // Both solve the system itself (relative residual, round-off level).
-  const Eigen::VectorXd Kx = K.free_free.selfadjointView<Eigen::Upper>() * x_cholmod;
-  EXPECT_LT((Kx - rhs).norm() / rhs.norm(), 1e-10);
-  EXPECT_GT(cholmod.statistics().factor_nonzeros, double(K.free_free.nonZeros()));
+  EXPECT_LT(c.relative_residual, 1e-10);
+  EXPECT_GT(c.factor_nonzeros, c.matrix_nonzeros);
 }
 
 // Runs the analysis; a singular model must end in an Error, never in a

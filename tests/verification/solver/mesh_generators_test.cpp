@@ -6,25 +6,27 @@
 #include <numbers>
 
 #include "kinetofem/solver/assembly.hpp"
-#include "kinetofem/testing/box_mesh.hpp"
-#include "kinetofem/testing/fe_probes.hpp"
-#include "kinetofem/testing/mapped_meshes.hpp"
+#include "kinetofem/verification/box_mesh.hpp"
+#include "kinetofem/verification/fe_probes.hpp"
+#include "kinetofem/verification/mapped_meshes.hpp"
 
 namespace kinetofem::fem {
 namespace {
 
+namespace kv = kinetofem::verification;
+
 class BoxMeshTest : public ::testing::TestWithParam<ElementType> {};
 
 TEST_P(BoxMeshTest, CountsAreaAndOutwardNormals) {
-  testing::BoxMeshOptions options;
+  kv::BoxMeshOptions options;
   options.length_m = {2.0, 1.0, 0.5};
   options.divisions = {4, 3, 2};
   options.type = GetParam();
   options.random_perturbation = 0.2;
-  const Mesh mesh = testing::box_mesh(options);
+  const Mesh mesh = kv::box_mesh(options);
   EXPECT_NO_THROW(mesh.validate());
   EXPECT_NO_THROW(check_element_jacobians(mesh));
-  EXPECT_EQ(mesh.node_count(), testing::box_node_count(GetParam(), options.divisions));
+  EXPECT_EQ(mesh.node_count(), kv::box_node_count(GetParam(), options.divisions));
   const int per_cell = corner_nodes(GetParam()) == 4 ? 6 : 1;
   EXPECT_EQ(mesh.element_count(), 4 * 3 * 2 * per_cell);
   // Reference: a box's volume (plane faces, straight edges: exact to round-off).
@@ -37,7 +39,7 @@ TEST_P(BoxMeshTest, CountsAreaAndOutwardNormals) {
       const std::string name = std::string(1, "xyz"[d]) + char('0' + side);
       const double area = L.prod() / L[d];
       for (int c = 0; c < 3; ++c) {
-        const double n_c = testing::face_integral(
+        const double n_c = kv::face_integral(
             mesh, name, none,
             [c](const Eigen::Vector3d&, const Eigen::Vector3d& n, const Eigen::Vector3d&) {
               return n[c];
@@ -56,9 +58,9 @@ INSTANTIATE_TEST_SUITE_P(Elements, BoxMeshTest,
                          [](const auto& info) { return std::string(name_of(info.param)); });
 
 TEST(MappedMeshes, QuarterAnnulusHex20LiesOnTheArcs) {
-  testing::QuarterAnnulusOptions o;
+  kv::QuarterAnnulusOptions o;
   o.radial_grading = 3.0;
-  const Mesh mesh = testing::quarter_annulus_mesh(o);
+  const Mesh mesh = kv::quarter_annulus_mesh(o);
   EXPECT_NO_THROW(check_element_jacobians(mesh));
   for (Index n : mesh.node_set("bore"))
     EXPECT_NEAR(mesh.nodes.row(n).head<2>().norm(), o.inner_radius_m, 1e-15);
@@ -76,8 +78,8 @@ TEST(MappedMeshes, QuarterAnnulusHex20LiesOnTheArcs) {
 }
 
 TEST(MappedMeshes, QuarterPlateWithHoleHasItsEdges) {
-  testing::QuarterPlateWithHoleOptions o;
-  const Mesh mesh = testing::quarter_plate_with_hole_mesh(o);
+  kv::QuarterPlateWithHoleOptions o;
+  const Mesh mesh = kv::quarter_plate_with_hole_mesh(o);
   EXPECT_NO_THROW(check_element_jacobians(mesh));
   for (Index n : mesh.node_set("hole"))
     EXPECT_NEAR(mesh.nodes.row(n).head<2>().norm(), o.hole_radius_m, 1e-15);

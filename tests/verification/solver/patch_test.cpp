@@ -16,45 +16,25 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
-#include "kinetofem/testing/box_mesh.hpp"
-#include "kinetofem/testing/fe_probes.hpp"
+#include "kinetofem/verification/box_mesh.hpp"
+#include "kinetofem/verification/fe_probes.hpp"
+#include "kinetofem/verification/patch_test.hpp"
 
 namespace kinetofem::fem {
 namespace {
 
-using testing::BoxMeshOptions;
+namespace kv = kinetofem::verification;
+using kv::BoxMeshOptions;
+using kv::distorted_box;
 
-const Eigen::Vector3d box_length(1.0, 0.8, 0.6);
-
-// Corners moved at random (20 % of a cell) and by a smooth sine warp. HEX20
-// also gets curved edges (mid nodes off the chords). TET10 keeps straight
-// edges: its 4-point rule (degree 2) integrates int dN/dx dV exactly only
-// when the element map is affine; on curved TET10 the patch test fails by
-// ~1e-4 (see CurvedTet10 below).
-Mesh distorted_box(ElementType type, bool curved) {
-  BoxMeshOptions options;
-  options.length_m = box_length;
-  options.divisions = {3, 3, 3};
-  options.type = type;
-  options.random_perturbation = 0.2;
-  options.seed = 7;
-  if (curved) {
-    options.mid_node_perturbation = 0.1;
-    options.smooth_map = testing::sine_warp(box_length, 0.05);
-  }
-  return testing::box_mesh(options);
-}
-
-Mesh distorted_box(ElementType type) { return distorted_box(type, type != ElementType::Tet10); }
-
-IsotropicMaterial steel() { return IsotropicMaterial{"steel", 210e9, 0.3, 7850.0}; }
-
-// Voigt strain (xx, yy, zz, xy, yz, zx; engineering shear) of u = A x + b.
-Vector6d voigt_strain(const Eigen::Matrix3d& A) {
-  Vector6d e;
-  e << A(0, 0), A(1, 1), A(2, 2), A(0, 1) + A(1, 0), A(1, 2) + A(2, 1), A(2, 0) + A(0, 2);
-  return e;
-}
+// The box, its distorted meshes and the displacement patch test are those of
+// `kinetofem verify` (kinetofem/verification/patch_test.hpp): corners moved at
+// random (20 % of a cell) and by a smooth sine warp; HEX20 also gets curved
+// edges (mid nodes off the chords). TET10 keeps straight edges: its 4-point
+// rule (degree 2) integrates int dN/dx dV exactly only when the element map
+// is affine; on curved TET10 the patch test fails by ~1e-4 (see CurvedTet10
+// below).
+const Eigen::Vector3d box_length = kv::patch_box_length();
 
 class PatchTest : public ::testing::TestWithParam<ElementType> {};
 
@@ -69,65 +49,16 @@ TEST_P(PatchTest, DistortedMeshIsValid) {
     }
 }
 
-// Relative errors of the displacement patch test on a mesh: interior nodal
-// displacement, Gauss-point stress and recovered nodal stress.
-struct PatchErrors {
-  double displacement = 0.0, gauss_stress = 0.0, nodal_stress = 0.0;
-  int interior_nodes = 0;
-};
-
-PatchErrors linear_field_patch(const Mesh& mesh) {
-  FeModel model;
-  model.mesh = mesh;
-  model.material = steel();
-  Eigen::Matrix3d A;
-  A << 1.0e-3, -0.4e-3, 0.7e-3,  //
-      0.3e-3, -0.6e-3, 0.2e-3,   //
-      -0.5e-3, 0.9e-3, 0.8e-3;
-  const Eigen::Vector3d b(2e-4, -1e-4, 3e-4);
-  auto exact = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return A * x + b; };
-  model.supports = testing::prescribe_field(model.mesh, model.mesh.node_set("boundary"), exact);
-
-  const Log log = Log::quiet();
-  LinearStaticAnalysis analysis(model, log);
-  const auto u = analysis.solve({LoadCase{}}).at(0);
-
-  PatchErrors errors;
-  const auto& boundary = model.mesh.node_set("boundary");
-  double scale = 0.0;
-  for (Index n = 0; n < model.mesh.node_count(); ++n) {
-    const Eigen::Vector3d ue = exact(model.mesh.nodes.row(n).transpose());
-    scale = std::max(scale, ue.norm());
-    if (std::binary_search(boundary.begin(), boundary.end(), n)) continue;
-    ++errors.interior_nodes;
-    errors.displacement = std::max(errors.displacement, (u.row(n).transpose() - ue).norm());
-  }
-  errors.displacement /= scale;
-
-  const Vector6d sigma = steel().elasticity_matrix() * voigt_strain(A);
-  const auto gauss = gauss_point_stress(model.mesh, model.material, u);
-  for (Index p = 0; p < gauss.stress_pa.rows(); ++p)
-    errors.gauss_stress =
-        std::max(errors.gauss_stress, (gauss.stress_pa.row(p).transpose() - sigma).norm());
-  errors.gauss_stress /= sigma.norm();
-  const auto nodal = recover_nodal_stress(model.mesh, model.material, u);
-  for (Index n = 0; n < nodal.stress_pa.rows(); ++n)
-    errors.nodal_stress =
-        std::max(errors.nodal_stress, (nodal.stress_pa.row(n).transpose() - sigma).norm());
-  errors.nodal_stress /= sigma.norm();
-  return errors;
-}
-
 TEST_P(PatchTest, LinearDisplacementFieldIsReproduced) {
-  const PatchErrors errors = linear_field_patch(distorted_box(GetParam()));
+  const kv::PatchErrors errors = kv::displacement_patch_test(distorted_box(GetParam()));
   ASSERT_GT(errors.interior_nodes, 0);
   // Reference: u = A x + b exactly at the interior nodes; 1e-10 relative (round-off).
-  EXPECT_LT(errors.displacement, 1e-10) << errors.interior_nodes << " interior nodes";
+  EXPECT_LT(errors.displacement, kv::kPatchTolerance) << errors.interior_nodes << " interior nodes";
   // Reference: sigma = D eps(A) at every Gauss point; 1e-10 relative.
-  EXPECT_LT(errors.gauss_stress, 1e-10);
+  EXPECT_LT(errors.gauss_stress, kv::kPatchTolerance);
   // Extrapolation and averaging reproduce a constant stress at the nodes too;
   // reference the same D eps(A), 1e-10 relative.
-  EXPECT_LT(errors.nodal_stress, 1e-10);
+  EXPECT_LT(errors.nodal_stress, kv::kPatchTolerance);
 }
 
 // Curved TET10 (mid nodes off the chords): the stiffness rule must integrate
@@ -144,17 +75,17 @@ TEST(PatchTestCurved, CurvedTet10) {
   options.type = ElementType::Tet10;
   options.random_perturbation = 0.1;
   options.mid_node_perturbation = 0.05;
-  const Mesh mesh = testing::box_mesh(options);
+  const Mesh mesh = kv::box_mesh(options);
   ASSERT_NO_THROW(check_element_jacobians(mesh));
-  const PatchErrors errors = linear_field_patch(mesh);
-  EXPECT_LT(errors.displacement, 1e-10);
-  EXPECT_LT(errors.gauss_stress, 1e-10);
+  const kv::PatchErrors errors = kv::displacement_patch_test(mesh);
+  EXPECT_LT(errors.displacement, kv::kPatchTolerance);
+  EXPECT_LT(errors.gauss_stress, kv::kPatchTolerance);
 }
 
 TEST_P(PatchTest, ConstantStressFromSurfaceTractions) {
   FeModel model;
   model.mesh = distorted_box(GetParam());
-  model.material = steel();
+  model.material = kv::patch_material();
   Eigen::Matrix3d sigma0;
   sigma0 << 80e6, 15e6, -10e6,  //
       15e6, -30e6, 25e6,        //
@@ -162,7 +93,7 @@ TEST_P(PatchTest, ConstantStressFromSurfaceTractions) {
 
   // 3-2-1 supports at three corners: (0,0,0) all, (Lx,0,0) y and z, (0,Ly,0) z.
   auto corner = [&](const Eigen::Vector3d& x) {
-    const auto nodes = testing::nodes_where(
+    const auto nodes = kv::nodes_where(
         model.mesh, [&](const Eigen::Vector3d& p) { return (p - x).norm() < 1e-9; });
     EXPECT_EQ(nodes.size(), 1u);
     return nodes.at(0);

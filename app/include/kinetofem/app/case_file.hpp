@@ -18,6 +18,7 @@
 // array of tables written with its index (`force[0].total_n=[0, 5e3, 0]`).
 // An override is checked like a key in the file, and its errors (and where())
 // name the override ("--set mesh.element_size_mm=-2: ...").
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -37,7 +38,8 @@ struct KeySpec {
   Type type = Type::Number;
   std::string unit;           // as written in the case file ("mm", "MPa", "N", ...)
   double to_si = 1.0;         // factor from the file's unit to SI
-  std::optional<double> default_number;
+  std::optional<double> default_number;           // Vector3: the same value in all three components
+  std::optional<std::array<double, 3>> default_vector;  // Vector3 of different components
   std::optional<std::string> default_text;
   double min = -1e300, max = 1e300;  // allowed range, in the file's unit
   bool min_exclusive = false;

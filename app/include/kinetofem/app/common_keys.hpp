@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "kinetofem/app/case_file.hpp"
+#include "kinetofem/loads/link_stress_history.hpp"
+#include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/solver/material.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 
@@ -22,6 +24,15 @@ fem::StaticSolverOptions read_solver_options(const CaseFile& case_file);
 
 // [sweep]: parameters, values, linspace (kinetofem run ignores them).
 std::vector<KeySpec> sweep_keys();
+
+// [mesh] of the parts of a motion case: element_size_mm, order, cache.
+std::vector<KeySpec> part_mesh_keys();
+// Mesh options of the parts; the cache in <output_dir>/mesh_cache.
+meshes::MeshOptions read_part_mesh_options(const CaseFile& case_file, const std::filesystem::path& output_dir);
+
+// solver.block_size: right-hand sides per block solve over the motion.
+std::vector<KeySpec> motion_solver_keys();
+loads::LinkStressOptions read_stress_options(const CaseFile& case_file);
 
 // `keys` followed by the material, solver and sweep keys.
 std::vector<KeySpec> with_common_keys(std::vector<KeySpec> keys);

@@ -23,6 +23,7 @@
 #include "kinetofem/app/jobs.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_stress.hpp"
 
 namespace kinetofem::app {
 
@@ -40,6 +41,7 @@ struct LinkageRun {
   std::filesystem::path results_file;
   double min_chain_tension_n = 0.0, max_chain_tension_n = 0.0;  // 0 when the model has no chain
   double max_abs_drive_effort = 0.0;                           // over all drives (N m or N)
+  std::vector<pipeline::PartSummary> parts;                    // one per [[part]]: stress over the motion
 };
 
 LinkageRun run_linkage(const CaseFile& case_file, const RunOptions& options);

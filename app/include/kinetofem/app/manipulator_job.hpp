@@ -11,24 +11,14 @@
 
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/jobs.hpp"
+#include "kinetofem/pipeline/part_stress.hpp"
 
 namespace kinetofem::app {
 
 const std::vector<KeySpec>& manipulator_schema();
 
-struct LinkSummary {
-  std::string link;
-  long nodes = 0, dofs = 0;
-  double peak_von_mises_pa = 0, peak_von_mises_time_s = 0;
-  double peak_displacement_m = 0, peak_displacement_time_s = 0;
-  double static_von_mises_pa = 0, static_displacement_m = 0;
-  double factorize_seconds = 0, solve_seconds = 0;
-  double assembly_seconds = 0, recovery_seconds = 0, analyze_seconds = 0;
-  double factor_nonzeros = 0, factor_bytes = 0, factorization_flops = 0;
-  long right_hand_sides = 0;
-  bool iterative_solver = false;  // AMG-PCG instead of CHOLMOD (factor too large, or asked for)
-  std::string solver_summary;
-};
+// What a run reports of each link (one per part of the preset).
+using LinkSummary = pipeline::PartSummary;
 
 struct ManipulatorSummary {
   std::string mechanism;  // "lever_chain" or "lever"

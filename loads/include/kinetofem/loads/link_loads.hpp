@@ -17,9 +17,12 @@
 //     rho (g - a_O - alpha x r - omega x (omega x r));
 //   * each point mass it carries (gripper, casting) as the force
 //     m (g - a_P) at the mass's point, tied to its mount face by a
-//     distributing coupling.
+//     distributing coupling;
+//   * each drive's effort (torque) on its shaft face, each spring's force
+//     (tension k (L - L0) + c L', from the frame's body states) and each
+//     constant point force, at their points, through distributing couplings.
 // These loads are in equilibrium when the multibody body has the FE mesh's
-// mass properties (see mass_properties_for); loads_at checks it and throws an
+// mass properties (pipeline::apply_mass_properties); loads_at checks it and throws an
 // Error naming the link and the time when the resultant force or moment
 // exceeds `equilibrium_tolerance` of the loads' magnitude.
 #include <memory>
@@ -57,16 +60,31 @@ struct DriveAttachment {
   std::string face_set;
 };
 
+// A spring of the multibody model, its end on this link tied to a face set.
+struct SpringAttachment {
+  std::string spring;  // name in mech::MultibodyModel::springs
+  std::string face_set;
+};
+
+// A constant point force of the multibody model on this link.
+struct PointForceAttachment {
+  std::string point_force;  // name in mech::MultibodyModel::point_forces
+  std::string face_set;
+};
+
 struct LinkDefinition {
   std::string body;  // body name in the multibody model
   const fem::FeModel* model = nullptr;  // mesh in the body frame; not owned
   std::vector<JointAttachment> joints;
   std::vector<PointMassAttachment> point_masses;
   std::vector<DriveAttachment> drives;
+  std::vector<SpringAttachment> springs;
+  std::vector<PointForceAttachment> point_forces;
 };
 
-// Mass, centre of mass and inertia of a mech::Body from an FE model (the
-// point masses are added by the multibody model itself).
+// Mass, centre of mass and inertia (about z) of a mech::Body from an FE
+// model in the body frame (the point masses are added by the multibody model
+// itself).
 void assign_mass_properties(mech::Body& body, const fem::FeModel& model);
 
 struct LinkLoadResult {
@@ -102,6 +120,19 @@ class LinkLoads {
     bool on_j = true;  // the effort acts on body_j (+), reacts on body_i (-)
     std::unique_ptr<fem::DistributingCoupling> coupling;
   };
+  struct Spring {
+    std::string name;
+    int spring_index = -1;
+    bool on_i = false;  // this link carries point_i (else point_j)
+    Eigen::Vector3d point_body = Eigen::Vector3d::Zero();
+    std::unique_ptr<fem::DistributingCoupling> coupling;
+  };
+  struct PointForce {
+    std::string name;
+    Eigen::Vector3d force_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d point_body = Eigen::Vector3d::Zero();
+    std::unique_ptr<fem::DistributingCoupling> coupling;
+  };
   struct Mass {
     std::string name;
     double mass_kg = 0;
@@ -115,6 +146,11 @@ class LinkLoads {
   std::vector<Attached> joints_;
   std::vector<Mass> masses_;
   std::vector<Drive> drives_;
+  std::vector<Spring> springs_;
+  std::vector<PointForce> point_forces_;
+  std::vector<mech::Spring> model_springs_;
+  std::vector<int> spring_body_i_, spring_body_j_;  // body indices of each model spring
+  std::vector<Eigen::Vector2d> spring_point_i_, spring_point_j_;
   fem::RigidBodyMotionLoads motion_loads_;
   double length_scale_ = 1.0;
 };

@@ -57,7 +57,9 @@ struct LinkEnvelope {
   double assembly_seconds = 0.0, solve_seconds = 0.0, recovery_seconds = 0.0;
 };
 
-using StepCallback = std::function<void(std::size_t step, const fem::DisplacementField& displacement,
+// Called once per frame, in order, with the elastic deformation (rigid-body
+// motion removed, body frame, m) and the nodal stresses (Pa).
+using StepCallback = std::function<void(std::size_t step, const fem::DisplacementField& elastic_displacement,
                                         const fem::NodalStress& stress)>;
 
 // `supported_model`: the link's FE model with its 3-2-1 support (see

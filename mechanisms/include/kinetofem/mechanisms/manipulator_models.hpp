@@ -14,7 +14,7 @@
 //                    in the design position
 // Joints: "A0" (frame-lever), "A" (lever-arm), and either "chain" (frame B0 to
 // the arm's roller of radius r, SPEC §1) or "B" (arm-rocker) and "B0"
-// (frame-rocker) for the four-bar (SPEC §2). Drive "lever drive": the lever's
+// (frame-rocker) for the four-bar (SPEC §2). Drive "lever_drive": the lever's
 // angle against the frame follows dphi(t) = law(t) from the design position.
 // Point masses "gripper" and "casting" sit at H on the arm.
 #include <memory>

@@ -25,7 +25,8 @@
 // 180 deg +- asin(w/2r) about +x): the chain's wrap arc must avoid it (see
 // meshes/geometry/README.md, section "Link 2").
 //
-// The geometry is meshes/geometry/arm.geo (OpenCASCADE); mesh_arm passes these
+// The geometry is meshes/geometry/arm.geo (OpenCASCADE), compiled into the
+// library (arm_geometry_text(), geometry_text.hpp); mesh_arm passes these
 // dimensions to it as the ONELAB parameters "Arm/<name>" (names in
 // arm.cpp). Defaults and the design reasons for them: meshes/geometry/README.md.
 //
@@ -36,8 +37,6 @@
 //   face set + node set "roller_rim"  the roller's outer cylinder, where the
 //                                     chain wraps (roller variant only)
 //   face set + node set "gripper_mount" the pad face y = h (normal +Y)
-#include <filesystem>
-
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/solver/mesh.hpp"
 
@@ -90,9 +89,6 @@ struct ArmDimensions {
 // roller_radius_m = r, the coupler bore_b_offset_m = r.
 ArmDimensions lever_chain_arm(double c_m, double h_m, double r_m);
 ArmDimensions lever_coupler(double c_m, double h_m, double r_m);
-
-// meshes/geometry/arm.geo in the source tree.
-std::filesystem::path arm_geometry_file();
 
 // Meshes link 2; throws Error for invalid dimensions or options, or if Gmsh
 // fails.

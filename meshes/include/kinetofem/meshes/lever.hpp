@@ -11,7 +11,8 @@
 //              (|z| <= boss_length/2) about the two pin axes
 //   bores      diameter bore_diameter through both bosses
 //
-// The geometry is meshes/geometry/lever.geo (OpenCASCADE); mesh_lever passes
+// The geometry is meshes/geometry/lever.geo (OpenCASCADE), compiled into the
+// library (lever_geometry_text(), geometry_text.hpp); mesh_lever passes
 // these dimensions to it as the ONELAB parameters "Lever/a", "Lever/w",
 // "Lever/t", "Lever/d_bore", "Lever/D_boss", "Lever/L_boss". The default
 // values and the design reasons for them are in meshes/geometry/README.md.
@@ -21,8 +22,6 @@
 //   face set + node set "bore_A0", "bore_A" the cylindrical bore surfaces
 //   face set + node set "boss_ends_A0", "boss_ends_A"
 //                                           the two flat annular ends of each boss
-#include <filesystem>
-
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/solver/mesh.hpp"
 
@@ -49,9 +48,6 @@ struct LeverDimensions {
   //   S = 2 (c sqrt(R^2 - c^2) + R^2 asin(c/R)).
   double volume_m3() const;
 };
-
-// meshes/geometry/lever.geo in the source tree.
-std::filesystem::path lever_geometry_file();
 
 // Meshes the lever; throws Error for invalid dimensions or options, or if
 // Gmsh fails.

@@ -10,7 +10,14 @@
 // volumes the group "body". Physical groups become node, face and element
 // sets as in read_msh (msh_io.hpp).
 //
+// A .geo script that merges a STEP/IGES file gets it in mm (OpenCASCADE's
+// default target unit, set explicitly before each .geo is read, since
+// OpenCASCADE keeps the unit of the last import process-wide) unless the
+// script sets Geometry.OCCTargetUnit itself.
+//
 // Mesh options set here override Mesh.* options set in a .geo script.
+//
+// Parts in other units, with named faces by bounding box: part_file.hpp.
 #include <filesystem>
 #include <map>
 #include <string>

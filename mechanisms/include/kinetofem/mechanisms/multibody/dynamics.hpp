@@ -40,6 +40,26 @@ struct DynamicsOptions {
   double multiplier_relative_tolerance = 1e-1;
   long max_steps = 500000;
   double max_step_s = 0.0;  // 0: no limit
+  // First step of the integrator (s), used as given when > 0. Automatic (0),
+  // both paths: the step whose change 0.5 h^2 y'' of the error-tested
+  // components is a quarter of their error tolerance in the worst component,
+  //     h0 = 0.5 sqrt(2 / max_i(|y''_i| / (relative_tolerance |y_i| + atol_i))),
+  // at the consistent initial state; IDAS: y = (q, v, work integrals),
+  // y'' = (q'', q''', power rates); CVODES: y = (s, s', work integrals),
+  // y'' = (s'', s''', power rates); q''' (s''') and the power rates by a
+  // forward difference along the motion; atol_i the absolute tolerance of the
+  // component (IDAS's work integrals: absolute_tolerance times the load scale).
+  // Bounded above by 1e-3 of the first output interval (IDAS's own default
+  // scale) and below by 1e-9 of it and 100 ulp of the initial time (round-off
+  // of the time). Why: the integrators' own first steps bound the first-order
+  // change, h |y'| <~ tol. Started from rest, the velocities sit at 0 with
+  // tolerance abs_tol, so a small fast mechanism gets h ~ abs_tol / |q''|
+  // (2.3e-16 s for 1.4e4 rad/s^2 at abs_tol 1e-12), where the index-2 corrector
+  // of IDAS cannot converge (flag -4 at t0; that mechanism needs >= ~1e-11 s)
+  // and CVODES starts at 2e-17 s. From rest a coordinate moves 0.5 q'' h^2 in a
+  // step, and that is what the error test sees: hence the second-order rule
+  // (that of CVODES's own estimate, without its first-order cap).
+  double initial_step_s = 0.0;  // 0: automatic
   double singular_tolerance = 1e-6;
   bool slack_is_error = true;
 };

@@ -83,6 +83,7 @@ struct RunSummary {
   std::vector<std::string> slack_chains;  // "name at t = ..." when slack is not an error
   long steps = 0, residual_evaluations = 0, jacobian_evaluations = 0, error_test_failures = 0,
        nonlinear_failures = 0;
+  double first_step_s = 0.0;  // the integrator's first step (dynamic runs; DynamicsOptions::initial_step_s)
 };
 
 struct Results {

@@ -1,0 +1,232 @@
+#include "kinetofem/app/part_keys.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
+
+namespace kinetofem::app {
+
+using units::kDeg;
+using units::kMm;
+using Type = KeySpec::Type;
+
+namespace {
+
+const std::vector<std::string> kSources = {"file", "lever", "arm_with_roller", "coupler", "rocker"};
+
+// Dimension keys of the parametric links: key, the source(s) it belongs to,
+// and where it goes. Defaults come from the dimension structs (declared once there).
+struct DimensionKey {
+  std::string key;
+  bool lever, arm;
+  double meshes::LeverDimensions::* lever_field;
+  double meshes::ArmDimensions::* arm_field;
+  std::string doc;
+};
+
+const std::vector<DimensionKey>& dimension_keys() {
+  using L = meshes::LeverDimensions;
+  using A = meshes::ArmDimensions;
+  static const std::vector<DimensionKey> keys = {
+      {"length_mm", true, false, &L::length_m, nullptr, "lever/rocker: distance between the bore centres"},
+      {"width_mm", true, false, &L::width_m, nullptr, "lever/rocker: plate width"},
+      {"thickness_mm", true, false, &L::thickness_m, nullptr, "lever/rocker: plate thickness"},
+      {"bore_diameter_mm", true, true, &L::bore_diameter_m, &A::bore_diameter_m, "pin bore diameter"},
+      {"boss_diameter_mm", true, true, &L::boss_diameter_m, &A::boss_diameter_m, "boss outer diameter"},
+      {"boss_length_mm", true, true, &L::boss_length_m, &A::boss_length_m, "boss length along the pins"},
+      {"arm_length_mm", false, true, nullptr, &A::length_m, "arm/coupler: c = |A C| along the arm"},
+      {"gripper_offset_mm", false, true, nullptr, &A::gripper_offset_m, "arm/coupler: h, the gripper mount face's y"},
+      {"roller_radius_mm", false, true, nullptr, &A::roller_radius_m, "arm_with_roller: roller radius r"},
+      {"roller_thickness_mm", false, true, nullptr, &A::roller_thickness_m, "arm_with_roller: roller thickness"},
+      {"bore_b_offset_mm", false, true, nullptr, &A::bore_b_offset_m, "coupler: x of bore B"},
+      {"arm_depth_mm", false, true, nullptr, &A::arm_depth_m, "arm/coupler: arm plate depth (in the plane)"},
+      {"arm_thickness_mm", false, true, nullptr, &A::arm_thickness_m, "arm/coupler: arm plate thickness"},
+  };
+  return keys;
+}
+
+pipeline::PartSource source_named(const std::string& name) {
+  if (name == "lever") return pipeline::PartSource::Lever;
+  if (name == "arm_with_roller") return pipeline::PartSource::ArmWithRoller;
+  if (name == "coupler") return pipeline::PartSource::Coupler;
+  if (name == "rocker") return pipeline::PartSource::Rocker;
+  return pipeline::PartSource::File;
+}
+
+loads::BoreLoad bore_load_named(const std::string& name) {
+  return name == "bearing" ? loads::BoreLoad::BearingPressure : loads::BoreLoad::DistributingCoupling;
+}
+
+}  // namespace
+
+void add_part_keys(std::vector<KeySpec>& s) {
+  const meshes::LeverDimensions lever;
+  const meshes::ArmDimensions arm;
+  s.push_back({.path = "part", .type = Type::TableArray, .doc = "FE parts: the elastic bodies whose stress is computed over the motion"});
+  s.push_back({.path = "part[].body", .type = Type::String, .doc = "the moving body this part belongs to (one part per body)", .required = true});
+  s.push_back({.path = "part[].source", .type = Type::String, .default_text = "file", .allowed = kSources,
+               .doc = "file: a geometry file; lever, arm_with_roller, coupler, rocker: the parametric links of SPEC §1/§2 "
+                      "(frames and face sets: docs/meshes.md)"});
+  s.push_back({.path = "part[].file", .type = Type::String,
+               .doc = "source = \"file\": .step/.stp, .brep, .geo or .msh (4.1), relative to the case file"});
+  s.push_back({.path = "part[].length_unit", .type = Type::String, .allowed = {"mm", "m"},
+               .doc = "unit of the file's coordinates: needed for .brep/.geo/.msh; a STEP file carries its own (checked if given)"});
+  s.push_back({.path = "part[].offset_mm", .type = Type::Array, .unit = "mm",
+               .doc = "[x, y] of the part's origin in the body frame; default [0, 0]"});
+  s.push_back({.path = "part[].angle_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0,
+               .doc = "rotation of the part's axes in the body frame (about z, the pin axis)"});
+  s.push_back({.path = "part[].mass_properties", .type = Type::String, .default_text = "mesh", .allowed = {"mesh", "case"},
+               .doc = "mesh: the body's mass, centre of mass and inertia from the mesh and the material; case: the body's "
+                      "own mass_kg, com_mm, inertia_kgm2 (both are printed)"});
+  for (const auto& d : dimension_keys()) {
+    const double def = d.lever ? lever.*(d.lever_field) : arm.*(d.arm_field);
+    s.push_back({.path = "part[]." + d.key, .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0, .min_exclusive = true,
+                 .doc = d.doc + fmt::format(" (default {:g} mm)", def / kMm)});
+  }
+  s.push_back({.path = "face_set", .type = Type::TableArray,
+               .doc = "named faces of a part file that has none (STEP from CAD): the surfaces inside a box"});
+  s.push_back({.path = "face_set[].body", .type = Type::String, .doc = "body whose part file the box selects from", .required = true});
+  s.push_back({.path = "face_set[].name", .type = Type::String, .doc = "name of the face set (used by face keys)", .required = true});
+  s.push_back({.path = "face_set[].box_mm", .type = Type::Array, .unit = "mm",
+               .doc = "[xmin, ymin, zmin, xmax, ymax, zmax] in the part file's coordinates, in mm", .required = true});
+  // Face keys of the tables that act on parts.
+  const std::string loads_doc = "coupling (distributing, RBE3-like: exact resultant) or bearing (cosine pressure, pins only)";
+  s.push_back({.path = "joint[].face_i", .type = Type::String, .doc = "face set of body_i's part the joint acts through"});
+  s.push_back({.path = "joint[].face_j", .type = Type::String, .doc = "face set of body_j's part the joint acts through (chain: the roller rim)"});
+  s.push_back({.path = "joint[].load", .type = Type::String, .default_text = "coupling", .allowed = {"coupling", "bearing"},
+               .doc = "how the joint's reaction enters the parts: " + loads_doc});
+  for (const char* table : {"motion_drive", "force_drive"}) {
+    s.push_back({.path = std::string(table) + "[].face_i", .type = Type::String, .doc = "face set of body_i's part the drive's reaction torque enters through"});
+    s.push_back({.path = std::string(table) + "[].face_j", .type = Type::String, .doc = "face set of body_j's part the drive's torque enters through (the shaft bore)"});
+  }
+  s.push_back({.path = "point_mass[].face", .type = Type::String, .doc = "face set of the body's part the mass is mounted on"});
+  s.push_back({.path = "spring[].face_i", .type = Type::String, .doc = "face set of body_i's part the spring acts through"});
+  s.push_back({.path = "spring[].face_j", .type = Type::String, .doc = "face set of body_j's part the spring acts through"});
+  s.push_back({.path = "point_force[].face", .type = Type::String, .doc = "face set of the body's part the force acts through"});
+}
+
+std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::MultibodyModel& model) {
+  std::vector<pipeline::PartSpec> parts;
+  std::map<std::string, std::size_t> part_of_body;
+  auto body_named = [&](const std::string& key, std::size_t k) -> const mech::Body& {
+    const std::string name = c.text_value(key, k);
+    for (const auto& b : model.bodies)
+      if (b.name == name) return b;
+    std::string names;
+    for (const auto& b : model.bodies) names += (names.empty() ? "" : ", ") + b.name;
+    fail("{} = \"{}\": no body of that name (bodies: {})", c.where(key, k), name, names);
+  };
+  for (std::size_t k = 0; k < c.count("part"); ++k) {
+    const mech::Body& body = body_named("part[].body", k);
+    require(!body.fixed, "{} = \"{}\": the ground is rigid; a part belongs to a moving body", c.where("part[].body", k),
+            body.name);
+    require(!part_of_body.contains(body.name), "{} = \"{}\": this body already has a part (one part per body)",
+            c.where("part[].body", k), body.name);
+    pipeline::PartSpec spec;
+    spec.attachments.body = body.name;
+    const std::string source = c.text_value("part[].source", k);
+    spec.source = source_named(source);
+    const bool lever_like = spec.source == pipeline::PartSource::Lever || spec.source == pipeline::PartSource::Rocker;
+    const bool arm_like = spec.source == pipeline::PartSource::ArmWithRoller || spec.source == pipeline::PartSource::Coupler;
+    spec.arm.with_roller = spec.source != pipeline::PartSource::Coupler;
+    for (const auto& d : dimension_keys()) {
+      const std::string key = "part[]." + d.key;
+      if (!c.has(key, k)) continue;
+      require((lever_like && d.lever) || (arm_like && d.arm), "{}: not a dimension of a \"{}\" part", c.where(key, k), source);
+      if (lever_like) spec.lever.*(d.lever_field) = c.number(key, k);
+      else spec.arm.*(d.arm_field) = c.number(key, k);
+    }
+    if (spec.source == pipeline::PartSource::File) {
+      require(c.has("part[].file", k), "{}: source = \"file\" needs 'file'", c.where("part[].body", k));
+      std::filesystem::path file = c.text_value("part[].file", k);
+      if (file.is_relative()) file = c.path().parent_path() / file;
+      require(std::filesystem::is_regular_file(file), "{} = \"{}\": no such file ({})", c.where("part[].file", k),
+              c.text_value("part[].file", k), file.string());
+      spec.file = file;
+      if (c.has("part[].length_unit", k)) spec.file_options.length_unit_m = c.text_value("part[].length_unit", k) == "mm" ? kMm : 1.0;
+      spec.label = fmt::format("part '{}' ({})", body.name, c.text_value("part[].file", k));
+    } else {
+      require(!c.has("part[].file", k), "{}: a \"{}\" part is parametric: no file", c.where("part[].file", k), source);
+      spec.label = fmt::format("part '{}' ({})", body.name, source);
+    }
+    spec.placement.offset_m = read_vector2(c, "part[].offset_mm", k, kMm);
+    spec.placement.angle_rad = c.number("part[].angle_deg", k);
+    spec.mass_from_mesh = c.text_value("part[].mass_properties", k) == "mesh";
+    part_of_body[body.name] = parts.size();
+    parts.push_back(std::move(spec));
+  }
+  for (std::size_t k = 0; k < c.count("face_set"); ++k) {
+    const std::string body = c.text_value("face_set[].body", k);
+    require(part_of_body.contains(body), "{} = \"{}\": that body has no [[part]]", c.where("face_set[].body", k), body);
+    pipeline::PartSpec& spec = parts[part_of_body[body]];
+    require(spec.source == pipeline::PartSource::File, "{}: face sets by box are for part files; the \"{}\" part has its own",
+            c.where("face_set[].body", k), pipeline::name_of(spec.source));
+    const std::vector<double> box = read_numbers(c, "face_set[].box_mm", k, kMm);
+    require(box.size() == 6, "{} must be [xmin, ymin, zmin, xmax, ymax, zmax], got {} numbers", c.where("face_set[].box_mm", k),
+            box.size());
+    spec.file_options.face_sets.push_back({c.text_value("face_set[].name", k), {box[0], box[1], box[2]}, {box[3], box[4], box[5]}});
+  }
+
+  // Attachments: every table that acts on a body with a part names its face.
+  auto part_for = [&](const std::string& body) -> pipeline::PartSpec* {
+    const auto it = part_of_body.find(body);
+    return it == part_of_body.end() ? nullptr : &parts[it->second];
+  };
+  // Returns the face for body `body` from key `key` of element k; empty if the body has no part.
+  auto face = [&](const std::string& key, std::size_t k, const std::string& body, const std::string& what) -> std::string {
+    pipeline::PartSpec* p = part_for(body);
+    if (!p) {
+      require(!c.has(key, k), "{}: body '{}' has no [[part]] to act through", c.where(key, k), body);
+      return {};
+    }
+    require(c.has(key, k), "{}: {} acts on body '{}', which has a part: give '{}' (a face set of the part)", c.where(key.substr(0, key.find('.')) + ".name", k),
+            what, body, key.substr(key.find('.') + 1));
+    return c.text_value(key, k);
+  };
+  for (std::size_t k = 0; k < c.count("joint"); ++k) {
+    const mech::Joint& j = model.joints.at(k);
+    const loads::BoreLoad load = bore_load_named(c.text_value("joint[].load", k));
+    const std::string what = fmt::format("joint '{}'", j.name);
+    const std::string fi = face("joint[].face_i", k, j.body_i, what), fj = face("joint[].face_j", k, j.body_j, what);
+    if (!fi.empty()) part_for(j.body_i)->attachments.joints.push_back({j.name, fi, j.type == mech::JointType::Chain ? loads::BoreLoad::DistributingCoupling : load});
+    if (!fj.empty()) part_for(j.body_j)->attachments.joints.push_back({j.name, fj, j.type == mech::JointType::Chain ? loads::BoreLoad::DistributingCoupling : load});
+  }
+  auto drives = [&](const char* table, const auto& list) {
+    for (std::size_t k = 0; k < c.count(table); ++k) {
+      const auto& d = list.at(k);
+      const std::string p = std::string(table) + "[].";
+      const std::string what = fmt::format("drive '{}'", d.name);
+      const std::string fi = face(p + "face_i", k, d.coordinate.body_i, what), fj = face(p + "face_j", k, d.coordinate.body_j, what);
+      if ((!fi.empty() || !fj.empty()) && d.coordinate.type != mech::CoordinateType::Angle)
+        fail("{}: drive '{}' acts on a displacement; only torque (angle) drives can load a part", c.where(p + "name", k), d.name);
+      if (!fi.empty()) part_for(d.coordinate.body_i)->attachments.drives.push_back({d.name, fi});
+      if (!fj.empty()) part_for(d.coordinate.body_j)->attachments.drives.push_back({d.name, fj});
+    }
+  };
+  drives("motion_drive", model.motion_drives);
+  drives("force_drive", model.force_drives);
+  for (std::size_t k = 0; k < c.count("point_mass"); ++k) {
+    const std::string body = c.text_value("point_mass[].body", k), name = c.text_value("point_mass[].name", k);
+    const std::string f = face("point_mass[].face", k, body, fmt::format("point mass '{}'", name));
+    if (!f.empty()) part_for(body)->attachments.point_masses.push_back({name, f});
+  }
+  for (std::size_t k = 0; k < c.count("spring"); ++k) {
+    const mech::Spring& sp = model.springs.at(k);
+    const std::string what = fmt::format("spring '{}'", sp.name);
+    const std::string fi = face("spring[].face_i", k, sp.body_i, what), fj = face("spring[].face_j", k, sp.body_j, what);
+    if (!fi.empty()) part_for(sp.body_i)->attachments.springs.push_back({sp.name, fi});
+    if (!fj.empty()) part_for(sp.body_j)->attachments.springs.push_back({sp.name, fj});
+  }
+  for (std::size_t k = 0; k < c.count("point_force"); ++k) {
+    const mech::PointForce& pf = model.point_forces.at(k);
+    const std::string f = face("point_force[].face", k, pf.body, fmt::format("point force '{}'", pf.name));
+    if (!f.empty()) part_for(pf.body)->attachments.point_forces.push_back({pf.name, f});
+  }
+  return parts;
+}
+
+}  // namespace kinetofem::app

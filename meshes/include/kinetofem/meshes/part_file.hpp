@@ -1,0 +1,95 @@
+#pragma once
+// Meshing a user's CAD part of a mechanism link: a STEP (.step/.stp), IGES
+// (.iges/.igs), BREP (.brep) or Gmsh .geo file, or an existing .msh 4.1
+// mesh, in the file's own frame, converted to metres, with named face sets
+// for the faces where joints and loads act.
+//
+// Units. STEP and IGES files record their length unit: they are imported in
+// metres (OpenCASCADE converts, Gmsh's Geometry.OCCTargetUnit = "M", as in
+// mesh_geometry). .brep, .geo and .msh files carry no unit: length_unit_m is
+// required for them (1e-3 for a part drawn in mm). Such a part is meshed in
+// its own unit with the element size converted to it, and its nodes are
+// multiplied by length_unit_m afterwards (Gmsh's Geometry.OCCScaling would
+// scale a .brep on import, but a .geo's own geometry not: one path for all).
+// For a STEP/IGES file length_unit_m is optional; given, it must agree with
+// the unit the file declares (read from its text, cad_file_length_unit_m).
+// A .geo that merges a STEP file gets it in mm (OpenCASCADE's default),
+// unless the script sets Geometry.OCCTargetUnit itself.
+//
+// Frame: the file's own coordinates, in metres; no placement (the caller
+// turns and offsets the mesh into the body frame).
+//
+// Named faces. Physical groups of a .geo or .msh file become sets as in
+// read_msh (msh_io.hpp); an imported STEP/IGES/BREP shape gets the element
+// and node set "body" (mesh_geometry.hpp). Each FaceSelection adds a
+// physical surface of its name made of every surface of the model lying
+// entirely inside its box (gmsh::model::getEntitiesInBoundingBox, dimension
+// 2, OpenCASCADE's bounding box of each surface, which carries its tolerance
+// of about 1e-7 m: make the box a little larger than the face). It becomes a
+// face set and a node set of that name, oriented out of the body.
+//
+// .msh files are read with read_msh (all its checks) and scaled; MeshOptions
+// other than their validity do not apply to them. With face selections the
+// file is opened once more in Gmsh to find its surfaces in the boxes.
+//
+// Mesh cache (MeshOptions::cache_dir): for geometry files the key covers the
+// file's text, the options, the length unit and every selection (name and
+// box). .msh files are not cached.
+//
+// Errors (kinetofem::Error, one line naming the file, and the selection for
+// a selection): a missing file; an unknown extension (the accepted ones are
+// listed); a missing, non-positive or (STEP/IGES) disagreeing length unit;
+// Gmsh failing to read or mesh the file; no volumes or no volume elements; a
+// selection with an empty name, a name given twice or equal to a physical
+// group the file already has ("body" for STEP/IGES/BREP), a box whose corners
+// are not finite or with min > max, a box that holds no surface (the message
+// gives the box and the part's extent in mm).
+//
+// Not thread-safe (one Gmsh session per call, gmsh_session.hpp).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/meshes/mesh_geometry.hpp"
+#include "kinetofem/solver/mesh.hpp"
+
+namespace kinetofem::meshes {
+
+struct FaceSelection {
+  std::string name;  // the face set (and node set) to create
+  // Corners of the box in the file's own coordinates, converted to metres
+  // (for a part drawn in mm: the mm values times 1e-3).
+  Eigen::Vector3d box_min_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d box_max_m = Eigen::Vector3d::Zero();
+};
+
+struct PartFileOptions {
+  // Metres per file unit: 1e-3 for mm, 1 for m. Required for .geo, .brep
+  // and .msh; for STEP/IGES the file's own unit is used and, if this is
+  // given too, checked against it.
+  std::optional<double> length_unit_m;
+  std::vector<FaceSelection> face_sets;  // extra named face sets by bounding box
+};
+
+// The mesh of the part in `file`, in metres, in the file's frame, with the
+// face sets of `part`. Throws Error as described above.
+fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOptions& part,
+                         const MeshOptions& mesh);
+
+// The extensions mesh_part_file accepts (lower case; matching is
+// case-insensitive): .step .stp .iges .igs .brep .geo .msh.
+const std::vector<std::string>& part_file_extensions();
+
+// The length unit a STEP or IGES file declares, in metres per file unit
+// (1e-3 for mm, 0.0254 for inch), read from its text: STEP, the length unit
+// of its GLOBAL_UNIT_ASSIGNED_CONTEXT (SI_UNIT with prefix, or a
+// CONVERSION_BASED_UNIT over one); IGES, the units flag (and name) of its
+// global section. nullopt when the file declares none, several different
+// ones, or one this reader does not know. Throws Error if the file cannot be
+// read or is neither STEP nor IGES.
+std::optional<double> cad_file_length_unit_m(const std::filesystem::path& file);
+
+}  // namespace kinetofem::meshes

@@ -1,0 +1,68 @@
+#pragma once
+// The motion-to-stress pipeline for any planar linkage whose bodies may carry
+// FE parts: the driver that runs the stages in order. The SPEC §1/§2
+// manipulators are presets of it (app/src/manipulator_job.cpp builds their
+// MotionStressCase from their keys), the `linkage` case type another.
+//
+//   run_motion_to_stress(case):
+//     1. check_motion_before_meshing   the motion is possible (nominal masses)
+//     2. build_part_models             mesh and place every part
+//     3. apply_mass_properties         bodies get their parts' mass properties
+//        check_part_against_model      face sets, size, joint points in bores
+//     4. run_dynamics                  the motion with the real masses
+//     5. solve_static_pose             the pose study at rest (when asked)
+//     6. analyse_part_over_motion      per part: loads, one factorization,
+//                                      block solves, stress, envelopes
+//     7. write_mechanism_histories     bodies, joints, drives, chains, points
+//     8. commit the results file       atomically (.h5 + .xdmf)
+// A linkage without parts runs steps 1, 4, 5, 7 and 8.
+//
+// Every Error of a stage is rethrown once with the case and the stage named
+// ("case.toml: the motion cannot be run: singular position at t = ...").
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/loads/link_stress_history.hpp"
+#include "kinetofem/mechanisms/multibody/model.hpp"
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/meshes/mesh_geometry.hpp"
+#include "kinetofem/pipeline/histories.hpp"
+#include "kinetofem/pipeline/motion_stages.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/pipeline/part_stress.hpp"
+#include "kinetofem/postproc/provenance.hpp"
+
+namespace kinetofem::pipeline {
+
+struct MotionStressCase {
+  std::string label;                 // for messages: the case file
+  mech::MultibodyModel model;        // bodies with parts get the parts' mass properties
+  std::vector<PartSpec> parts;       // may be empty: rigid-body dynamics only
+  std::vector<double> times;         // output times, s (first = start)
+  DynamicsSettings dynamics;
+  // Target law value of each motion drive for the static pose study (rad or
+  // m); empty: no static study.
+  std::optional<std::vector<double>> static_pose;
+  fem::IsotropicMaterial material;   // of every part
+  meshes::MeshOptions mesh;
+  loads::LinkStressOptions stress;
+  std::vector<TrackedPoint> tracked_points;  // written as point.<body>.<point> paths
+  std::filesystem::path results_file;        // <dir>/<name>.h5 (+ .xdmf)
+  post::Provenance provenance;
+};
+
+struct MotionStressRun {
+  mech::MultibodyModel model;  // as run: with the parts' mass properties
+  mech::Results motion;
+  std::optional<mech::Frame> static_pose;
+  std::vector<PartSummary> parts;
+  std::filesystem::path results_file;
+  double meshing_seconds = 0.0, dynamics_seconds = 0.0;
+};
+
+MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log);
+
+}  // namespace kinetofem::pipeline

@@ -1,0 +1,52 @@
+#pragma once
+// Stage "loads and stress over the motion" for one part: the loads of every
+// output time (loads::LinkLoads: joint reactions, chain pull, drive efforts,
+// springs, point forces, d'Alembert inertia and weight, point masses), one
+// stiffness factorization, block solves, stress recovery, the envelope over
+// the motion and, when a static pose frame is given, the static study, all
+// streamed into the results file under the part's body name:
+//   series  displacement (m, elastic: rigid-body motion removed, body frame),
+//           von_mises (Pa), one step per output time
+//   static  static_displacement, static_von_mises, static_stress (Voigt)
+//   envelope von_mises (max), displacement_magnitude (max), with their step
+// The part is held by a statically determinate 3-2-1 support whose reactions
+// are checked to vanish (the loads are self-equilibrated).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/loads/link_stress_history.hpp"
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
+
+namespace kinetofem::pipeline {
+
+// What a run reports of one part (SI units; times in s).
+struct PartSummary {
+  std::string body;
+  long nodes = 0, dofs = 0;
+  double peak_von_mises_pa = 0, peak_von_mises_time_s = 0;
+  long peak_von_mises_node = 0;
+  Eigen::Vector3d peak_von_mises_at_m = Eigen::Vector3d::Zero();  // body frame
+  double peak_displacement_m = 0, peak_displacement_time_s = 0;
+  double static_von_mises_pa = 0, static_displacement_m = 0;
+  double factorize_seconds = 0, solve_seconds = 0;
+  double assembly_seconds = 0, recovery_seconds = 0, analyze_seconds = 0;
+  double factor_nonzeros = 0, factor_bytes = 0, factorization_flops = 0;
+  long right_hand_sides = 0;
+  double worst_equilibrium_residual = 0, worst_support_reaction = 0;
+  bool iterative_solver = false;  // AMG-PCG instead of CHOLMOD (factor too large, or asked for)
+  std::string solver_summary;
+};
+
+// `part.model` without supports (they are added here). Writes the part's body
+// into `writer`; prints the peak line. Throws Error naming the part and time
+// when the loads are out of equilibrium or the support carries load.
+PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyModel& model,
+                                     const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
+                                     post::ResultsWriter& writer, const loads::LinkStressOptions& options,
+                                     const Log& log);
+
+}  // namespace kinetofem::pipeline

@@ -1,0 +1,56 @@
+#include "kinetofem/pipeline/manipulator_preset.hpp"
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::pipeline {
+
+std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, ManipulatorLinks links) {
+  const bool chain = def.type == mech::ManipulatorType::LeverChain;
+  const mech::LeverChainGeometry& g = def.geometry;
+  const loads::BoreLoad pin = links.bore_load;
+
+  PartSpec lever;
+  lever.source = PartSource::Lever;
+  lever.lever = links.lever;
+  lever.lever.length_m = g.a_m;
+  lever.label = "part 'lever' (lever 1)";
+  lever.attachments = {"lever", nullptr, {{"A0", "bore_A0", pin}, {"A", "bore_A", pin}}, {}, {{"lever_drive", "bore_A0"}}};
+
+  PartSpec arm;
+  arm.source = chain ? PartSource::ArmWithRoller : PartSource::Coupler;
+  arm.arm = chain ? meshes::lever_chain_arm(g.c_m, g.h_m, g.r_m) : meshes::lever_coupler(g.c_m, g.h_m, g.r_m);
+  for (auto field : {&meshes::ArmDimensions::arm_depth_m, &meshes::ArmDimensions::arm_thickness_m})
+    arm.arm.*field = links.arm.*field;
+  arm.arm.bore_diameter_m = links.lever.bore_diameter_m;  // one pin size for every joint
+  arm.arm.boss_diameter_m = links.lever.boss_diameter_m;
+  arm.arm.boss_length_m = links.lever.boss_length_m;
+  arm.label = chain ? "part 'arm' (link 2 with roller)" : "part 'arm' (coupler, link 2)";
+  arm.attachments.body = "arm";
+  arm.attachments.joints.push_back({"A", "bore_A", pin});
+  if (chain) arm.attachments.joints.push_back({"chain", "roller_rim", loads::BoreLoad::DistributingCoupling});
+  else arm.attachments.joints.push_back({"B", "bore_B", pin});
+  if (def.gripper_mass_kg > 0) arm.attachments.point_masses.push_back({"gripper", "gripper_mount"});
+  if (def.casting_mass_kg > 0) arm.attachments.point_masses.push_back({"casting", "gripper_mount"});
+
+  std::vector<PartSpec> parts = {lever, arm};
+  if (!chain) {
+    PartSpec rocker;
+    rocker.source = PartSource::Rocker;
+    rocker.lever = links.lever;
+    rocker.lever.length_m = g.b0_m;
+    rocker.label = "part 'rocker' (rocker 3)";
+    rocker.attachments = {"rocker", nullptr, {{"B0", "bore_A0", pin}, {"B", "bore_A", pin}}, {}, {}};
+    parts.push_back(rocker);
+  }
+  for (const auto& p : parts) {
+    try {
+      if (p.source == PartSource::Lever || p.source == PartSource::Rocker) p.lever.validate();
+      else p.arm.validate();
+    } catch (const Error& e) {
+      fail("{}: {}", p.label, e.what());
+    }
+  }
+  return parts;
+}
+
+}  // namespace kinetofem::pipeline

@@ -1,0 +1,68 @@
+#include "kinetofem/pipeline/motion_to_stress.hpp"
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
+
+namespace kinetofem::pipeline {
+
+namespace {
+
+// Runs one stage; an Error leaves it with the case and the stage named.
+template <typename Stage>
+auto in_stage(const MotionStressCase& c, const char* what, Stage&& stage) {
+  try {
+    return stage();
+  } catch (const Error& e) {
+    fail("{}: {}: {}", c.label, what, e.what());
+  }
+}
+
+std::vector<std::string> bodies_with_parts(const std::vector<PartSpec>& parts) {
+  std::vector<std::string> out;
+  for (const auto& p : parts) out.push_back(p.attachments.body);
+  return out;
+}
+
+}  // namespace
+
+MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) {
+  MotionStressRun run;
+  run.model = c.model;
+  run.results_file = c.results_file;
+
+  in_stage(c, "the motion cannot be run", [&] {
+    check_motion_before_meshing(c.model, c.times, bodies_with_parts(c.parts));
+    return 0;
+  });
+
+  Stopwatch clock;
+  const std::vector<Part> parts = build_part_models(c.parts, c.material, c.mesh, log);
+  run.meshing_seconds = clock.seconds();
+  apply_mass_properties(run.model, parts, log);
+  for (const auto& part : parts) check_part_against_model(part, run.model);
+
+  const mech::MultibodySystem system = in_stage(c, "the linkage is not valid", [&] { return mech::MultibodySystem(run.model); });
+  log.info("dynamics: {} output times over {:.4g} s", c.times.size(), c.times.back() - c.times.front());
+  clock.restart();
+  run.motion = in_stage(c, "the motion cannot be run", [&] { return run_dynamics(system, c.times, c.dynamics); });
+  run.dynamics_seconds = clock.seconds();
+  log.info("  dynamics: {:.3f} s", run.dynamics_seconds);
+  log.info("{}", run.motion.format_checks());
+
+  if (c.static_pose)
+    run.static_pose = in_stage(c, "the static study's pose cannot be reached",
+                               [&] { return solve_static_pose(run.model, *c.static_pose); });
+
+  std::error_code ec;
+  std::filesystem::create_directories(c.results_file.parent_path(), ec);
+  if (ec) fail("{}: cannot create the output directory: {}", c.results_file.parent_path().string(), ec.message());
+  post::ResultsWriter writer(c.results_file, c.provenance);
+  for (const auto& part : parts)
+    run.parts.push_back(
+        analyse_part_over_motion(part, run.model, run.motion.frames, run.static_pose, writer, c.stress, log));
+  write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
+  writer.commit();
+  return run;
+}
+
+}  // namespace kinetofem::pipeline

@@ -1,0 +1,212 @@
+#include "kinetofem/pipeline/part_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <Eigen/Geometry>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
+
+namespace kinetofem::pipeline {
+
+using units::kMm;
+
+const char* name_of(PartSource source) {
+  switch (source) {
+    case PartSource::File: return "file";
+    case PartSource::Lever: return "lever";
+    case PartSource::ArmWithRoller: return "arm_with_roller";
+    case PartSource::Coupler: return "coupler";
+    case PartSource::Rocker: return "rocker";
+  }
+  return "?";
+}
+
+void place_mesh(fem::Mesh& mesh, const PartPlacement& placement) {
+  if (placement.angle_rad == 0.0 && placement.offset_m.isZero()) return;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(placement.angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::RowVector3d offset(placement.offset_m.x(), placement.offset_m.y(), 0.0);
+  for (fem::Index i = 0; i < mesh.node_count(); ++i)
+    mesh.nodes.row(i) = mesh.nodes.row(i) * R.transpose() + offset;
+}
+
+namespace {
+
+fem::Mesh mesh_of(const PartSpec& spec, const meshes::MeshOptions& options) {
+  try {
+    switch (spec.source) {
+      case PartSource::File: return meshes::mesh_part_file(spec.file, spec.file_options, options);
+      case PartSource::Lever:
+      case PartSource::Rocker: spec.lever.validate(); return meshes::mesh_lever(spec.lever, options);
+      case PartSource::ArmWithRoller:
+      case PartSource::Coupler: spec.arm.validate(); return meshes::mesh_arm(spec.arm, options);
+    }
+  } catch (const Error& e) {
+    fail("{}: {}", spec.label, e.what());
+  }
+  fail("{}: unknown part source", spec.label);
+}
+
+}  // namespace
+
+std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fem::IsotropicMaterial& material,
+                                    const meshes::MeshOptions& options, const Log& log) {
+  std::set<std::string> bodies;
+  for (const auto& spec : specs)
+    require(bodies.insert(spec.attachments.body).second, "{}: body '{}' has a second part (one part per body)",
+            spec.label, spec.attachments.body);
+  std::vector<Part> parts;
+  parts.reserve(specs.size());
+  if (!specs.empty())
+    log.info("meshing {} part(s) (element size {:.1f} mm, order {})", specs.size(), options.element_size_m / kMm,
+             options.order);
+  for (const auto& spec : specs) {
+    Stopwatch clock;
+    Part part;
+    part.spec = spec;
+    part.model.mesh = mesh_of(spec, options);
+    place_mesh(part.model.mesh, spec.placement);
+    part.model.material = material;
+    part.mass = fem::mass_properties(part.model.mesh, material);
+    part.meshing_seconds = clock.seconds();
+    const fem::Mesh& mesh = part.model.mesh;
+    log.info("  {}: {} nodes, {} elements ({}), {} DoFs, {:.3f} kg; {:.2f} s", spec.label, mesh.node_count(),
+             mesh.element_count(), mesh.blocks.empty() ? "-" : fem::name_of(mesh.blocks.front().type),
+             3 * mesh.node_count(), part.mass.mass_kg, part.meshing_seconds);
+    parts.push_back(std::move(part));
+  }
+  for (auto& part : parts) part.spec.attachments.model = &part.model;
+  return parts;
+}
+
+void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log) {
+  for (const auto& part : parts) {
+    auto it = std::find_if(model.bodies.begin(), model.bodies.end(),
+                           [&](const mech::Body& b) { return b.name == part.body(); });
+    require(it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.spec.label, part.body());
+    require(!it->fixed, "{}: body '{}' is the ground, which is rigid here: give the part to a moving body",
+            part.spec.label, part.body());
+    const fem::MassProperties& mp = part.mass;
+    const std::string mesh_line =
+        fmt::format("mesh {:.4f} kg, centre of mass ({:.2f}, {:.2f}) mm, I_zz {:.5g} kg m^2", mp.mass_kg,
+                    mp.centre_of_mass_m.x() / kMm, mp.centre_of_mass_m.y() / kMm, mp.inertia_about_com_kgm2(2, 2));
+    const bool case_given = it->mass_kg > 0 || it->inertia_kgm2 > 0;
+    const std::string case_line =
+        case_given ? fmt::format("case {:.4f} kg, centre of mass ({:.2f}, {:.2f}) mm, I_zz {:.5g} kg m^2", it->mass_kg,
+                                 it->com_body.x() / kMm, it->com_body.y() / kMm, it->inertia_kgm2)
+                   : std::string("case: none given");
+    if (part.spec.mass_from_mesh) {
+      loads::assign_mass_properties(*it, part.model);
+      log.info("  body '{}' mass properties: {} (used); {}", it->name, mesh_line, case_line);
+    } else {
+      require(it->mass_kg > 0 && it->inertia_kgm2 > 0,
+              "{}: mass_properties = \"case\" needs the body's mass_kg > 0 and inertia_kgm2 > 0", part.spec.label);
+      log.info("  body '{}' mass properties: {} (used); {}", it->name, case_line, mesh_line);
+    }
+  }
+}
+
+namespace {
+
+// Centre (in the plane) and mean in-plane radius of a face set's nodes.
+struct FaceSetCircle {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+};
+
+FaceSetCircle circle_of(const fem::Mesh& mesh, const std::string& face_set) {
+  const std::vector<fem::Index> nodes = fem::nodes_of_faces(mesh.face_set(face_set));
+  FaceSetCircle c;
+  for (fem::Index n : nodes) c.centre += mesh.nodes.row(n).head<2>().transpose();
+  c.centre /= double(std::max<std::size_t>(nodes.size(), 1));
+  for (fem::Index n : nodes) c.radius_m += (mesh.nodes.row(n).head<2>().transpose() - c.centre).norm();
+  c.radius_m /= double(std::max<std::size_t>(nodes.size(), 1));
+  return c;
+}
+
+std::string sets_of(const fem::Mesh& mesh) {
+  std::string out;
+  for (const auto& [name, faces] : mesh.face_sets) out += (out.empty() ? "" : ", ") + name;
+  return out.empty() ? "none" : out;
+}
+
+void require_face_set(const Part& part, const std::string& face_set, const std::string& user) {
+  const fem::Mesh& mesh = part.model.mesh;
+  if (mesh.face_sets.contains(face_set)) return;
+  if (mesh.element_sets.contains(face_set) || mesh.node_sets.contains(face_set))
+    fail("{}: {} acts through '{}', which is not a surface of the part (it is a volume, curve or point group); "
+         "surface sets: {}",
+         part.spec.label, user, face_set, sets_of(mesh));
+  fail("{}: {} acts through face set '{}', which the part does not have (it has: {})", part.spec.label, user, face_set,
+       sets_of(mesh));
+}
+
+Eigen::Vector2d point_on(const mech::Body& body, const std::string& point) {
+  if (point == "origin") return Eigen::Vector2d::Zero();
+  const auto it = body.points.find(point);
+  require(it != body.points.end(), "body '{}' has no point '{}'", body.name, point);
+  return it->second;
+}
+
+}  // namespace
+
+void check_part_against_model(const Part& part, const mech::MultibodyModel& model) {
+  const loads::LinkDefinition& a = part.spec.attachments;
+  const auto body_it = std::find_if(model.bodies.begin(), model.bodies.end(),
+                                    [&](const mech::Body& b) { return b.name == a.body; });
+  require(body_it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.spec.label, a.body);
+  const mech::Body& body = *body_it;
+  for (const auto& j : a.joints) require_face_set(part, j.face_set, fmt::format("joint '{}'", j.joint));
+  for (const auto& m : a.point_masses) require_face_set(part, m.face_set, fmt::format("point mass '{}'", m.point_mass));
+  for (const auto& d : a.drives) require_face_set(part, d.face_set, fmt::format("drive '{}'", d.drive));
+  for (const auto& s : a.springs) require_face_set(part, s.face_set, fmt::format("spring '{}'", s.spring));
+  for (const auto& f : a.point_forces)
+    require_face_set(part, f.face_set, fmt::format("point force '{}'", f.point_force));
+
+  // Joint points of the body (revolute and chain: the bore or roller centre).
+  struct JointPoint {
+    std::string joint, face_set;
+    Eigen::Vector2d at;
+  };
+  std::vector<JointPoint> points;
+  for (const auto& attachment : a.joints) {
+    const auto joint = std::find_if(model.joints.begin(), model.joints.end(),
+                                    [&](const mech::Joint& j) { return j.name == attachment.joint; });
+    require(joint != model.joints.end(), "{}: the mechanism has no joint '{}'", part.spec.label, attachment.joint);
+    if (joint->type != mech::JointType::Revolute && joint->type != mech::JointType::Chain) continue;
+    const std::string& point = joint->body_i == a.body ? joint->point_i : joint->point_j;
+    if (joint->type == mech::JointType::Chain && joint->body_i == a.body) continue;  // the hinge end
+    points.push_back({joint->name, attachment.face_set, point_on(body, point)});
+  }
+
+  // Size: the part must be of the order of the distance between its joints.
+  const fem::Mesh& mesh = part.model.mesh;
+  const Eigen::Vector3d lo = mesh.nodes.colwise().minCoeff().transpose(), hi = mesh.nodes.colwise().maxCoeff().transpose();
+  const double extent = (hi - lo).head<2>().norm();
+  double span = 0.0;
+  std::string from, to;
+  for (const auto& p : points)
+    for (const auto& q : points)
+      if ((p.at - q.at).norm() > span) span = (p.at - q.at).norm(), from = p.joint, to = q.joint;
+  if (span > 0.0)
+    require(extent > 0.5 * span && extent < 20.0 * span,
+            "{}: the part spans {:.4g} mm in the plane but its joints '{}' and '{}' are {:.4g} mm apart: is its length "
+            "unit right? (expected a part of about {:.4g} mm or more)",
+            part.spec.label, extent / kMm, from, to, span / kMm, span / kMm);
+
+  // Placement: each joint point must lie in its bore (the face set's circle).
+  for (const auto& p : points) {
+    const FaceSetCircle c = circle_of(mesh, p.face_set);
+    const double distance = (p.at - c.centre).norm();
+    require(distance <= 0.5 * c.radius_m + 1e-9,
+            "{}: joint '{}' at ({:.3f}, {:.3f}) mm (body frame) lies {:.3f} mm from the centre of its face set '{}' "
+            "(radius {:.3f} mm, centre ({:.3f}, {:.3f}) mm): check the part's placement (offset_mm, angle_deg) or the "
+            "face set",
+            part.spec.label, p.joint, p.at.x() / kMm, p.at.y() / kMm, distance / kMm, p.face_set, c.radius_m / kMm,
+            c.centre.x() / kMm, c.centre.y() / kMm);
+  }
+}
+
+}  // namespace kinetofem::pipeline

@@ -1,0 +1,84 @@
+#include "kinetofem/pipeline/run_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "kinetofem/core/units.hpp"
+#include "kinetofem/pipeline/histories.hpp"
+
+namespace kinetofem::pipeline {
+
+using units::kMm;
+using units::kMpa;
+
+MechanismExtremes mechanism_extremes(const mech::MultibodyModel& m, const mech::Results& res) {
+  MechanismExtremes out;
+  if (res.frames.empty()) return out;
+  const std::size_t n_drives = res.frames.front().drives.size();
+  for (std::size_t d = 0; d < n_drives; ++d) {
+    double lo = 1e300, hi = -1e300, t_lo = 0, t_hi = 0, p_max = 0;
+    for (const auto& f : res.frames) {
+      const double e = f.drives[d].effort;
+      if (e < lo) lo = e, t_lo = f.t;
+      if (e > hi) hi = e, t_hi = f.t;
+      p_max = std::max(p_max, std::abs(f.drives[d].power_W));
+    }
+    out.max_abs_drive_effort = std::max({out.max_abs_drive_effort, std::abs(lo), std::abs(hi)});
+    const std::string unit = drive_effort_unit(m, d);
+    out.text += fmt::format("  drive {:<16} {}: effort {:.4g} {} (t = {:.4g} s) .. {:.4g} {} (t = {:.4g} s); peak |power| {:.4g} W\n",
+                            res.frames.front().drives[d].name, d < m.motion_drives.size() ? "(motion)" : "(force) ", lo,
+                            unit, t_lo, hi, unit, t_hi, p_max);
+  }
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    double peak = 0, t_peak = 0, moment = 0;
+    for (const auto& f : res.frames) {
+      if (f.joints[j].on_j.force_world.norm() > peak) peak = f.joints[j].on_j.force_world.norm(), t_peak = f.t;
+      moment = std::max(moment, std::abs(f.joints[j].on_j.moment_Nm));
+    }
+    out.text += fmt::format("  joint {:<16} max |reaction| {:.4g} N (t = {:.4g} s){}\n", m.joints[j].name, peak, t_peak,
+                            moment > 0 && m.joints[j].type != mech::JointType::Revolute
+                                ? fmt::format("; max |moment| on {} {:.4g} N m", m.joints[j].body_j, moment)
+                                : "");
+  }
+  const std::size_t n_chains = res.frames.front().chains.size();
+  for (std::size_t ch = 0; ch < n_chains; ++ch) {
+    double lo = 1e300, hi = -1e300, t_lo = 0;
+    for (const auto& f : res.frames) {
+      if (f.chains[ch].tension_N < lo) lo = f.chains[ch].tension_N, t_lo = f.t;
+      hi = std::max(hi, f.chains[ch].tension_N);
+    }
+    if (ch == 0) out.min_chain_tension_n = lo, out.max_chain_tension_n = hi;
+    out.min_chain_tension_n = std::min(out.min_chain_tension_n, lo);
+    out.max_chain_tension_n = std::max(out.max_chain_tension_n, hi);
+    out.text += fmt::format("  chain {:<16} tension {:.4g} N (min, t = {:.4g} s) .. {:.4g} N{}\n",
+                            res.frames.front().chains[ch].name, lo, t_lo, hi,
+                            lo <= 0 ? "  SLACK: the chain cannot push" : "");
+  }
+  return out;
+}
+
+PartExtremes part_extremes(const std::vector<PartSummary>& parts) {
+  PartExtremes e;
+  for (const auto& p : parts) {
+    e.max_von_mises_pa = std::max(e.max_von_mises_pa, p.peak_von_mises_pa);
+    e.max_displacement_m = std::max(e.max_displacement_m, p.peak_displacement_m);
+    e.static_max_von_mises_pa = std::max(e.static_max_von_mises_pa, p.static_von_mises_pa);
+    e.static_max_displacement_m = std::max(e.static_max_displacement_m, p.static_displacement_m);
+  }
+  return e;
+}
+
+std::string format_part_table(const std::vector<PartSummary>& parts) {
+  std::string out = fmt::format("  {:<8} {:>9} {:>14} {:>10} {:>14} {:>10} {:>12} {:>12}\n", "part", "DoFs",
+                                "max vM [MPa]", "at t [s]", "max |u| [mm]", "at t [s]", "static vM", "static |u|");
+  for (const auto& p : parts)
+    out += fmt::format("  {:<8} {:>9} {:>14.3f} {:>10.4f} {:>14.5f} {:>10.4f} {:>12.3f} {:>12.5f}\n", p.body, p.dofs,
+                       p.peak_von_mises_pa / kMpa, p.peak_von_mises_time_s, p.peak_displacement_m / kMm,
+                       p.peak_displacement_time_s, p.static_von_mises_pa / kMpa, p.static_displacement_m / kMm);
+  for (const auto& p : parts) out += fmt::format("  {:<8} solver: {}\n", p.body, p.solver_summary);
+  return out;
+}
+
+}  // namespace kinetofem::pipeline
