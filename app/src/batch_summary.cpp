@@ -11,11 +11,13 @@
 
 #include "kinetofem/app/batch.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
 
 namespace kinetofem::app {
 
 namespace {
-constexpr double kMpa = 1e6, kMm = 1e-3;
+using units::kMm;
+using units::kMpa;
 
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;

@@ -5,6 +5,7 @@
 #include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/meshes/lever.hpp"
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
@@ -16,7 +17,8 @@ namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kMpa = 1e6;
+using units::kMm;
+using units::kMpa;
 }  // namespace
 
 const std::vector<KeySpec>& fe_static_schema() {
@@ -243,12 +245,6 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
   require(summary.reaction_balance < 1e-6,
           "equilibrium check failed: support reactions balance the loads only to {:.2e}",
           summary.reaction_balance);
-  // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml.
-  write_run_summary(options.output_dir,
-                    {.name = name, .type = "fe_static", .results_file = summary.results_file,
-                     .wall_time_s = total.seconds(), .max_von_mises_pa = summary.max_von_mises_pa,
-                     .max_displacement_m = summary.max_displacement_m,
-                     .extra = {{"dofs", double(summary.dof_count)}, {"reaction_balance", summary.reaction_balance}}});
   return summary;
 }
 

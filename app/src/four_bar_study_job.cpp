@@ -11,14 +11,17 @@
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/four_bar.hpp"
+#include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0;
+using units::kDeg;
+using units::kMm;
 }  // namespace
 
 const std::vector<KeySpec>& four_bar_study_schema() {
@@ -68,10 +71,11 @@ MechanismCaseSummary run_four_bar_study(const CaseFile& c, const RunOptions& opt
   const double duration = c.number("study.duration_s");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> times(n);
+  const std::vector<double> grid = mech::equally_spaced_times(duration, long(n));
   post::FieldMatrix dphi(n, 1), h_chain(n, 2), h_four(n, 2), assembled(n, 1), mu_chain(n, 1), mu_four(n, 1);
   for (std::size_t k = 0; k < n; ++k) {
     const auto& sample = s.samples[k];
-    times[k] = duration * double(k) / double(n - 1);
+    times[k] = grid[k];
     dphi(k, 0) = sample.dphi_rad;
     h_chain.row(k) = sample.h_lever_chain_m.transpose();
     assembled(k, 0) = sample.four_bar_assembles ? 1.0 : 0.0;

@@ -11,14 +11,17 @@
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/crank_slider_gripper.hpp"
+#include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0;
+using units::kDeg;
+using units::kMm;
 
 std::string ranges_text(const std::vector<mech::PhiInterval>& ranges) {
   std::string out;
@@ -88,8 +91,9 @@ MechanismCaseSummary run_gripper_study(const CaseFile& c, const RunOptions& opti
       if (x >= r.lo_rad && x <= r.hi_rad) return 1.0;
     return 0.0;
   };
+  const std::vector<double> grid = mech::equally_spaced_times(duration, T);
   for (long k = 0; k < T; ++k) {
-    const double t = duration * double(k) / double(T - 1);
+    const double t = grid[std::size_t(k)];
     const double p = ro.phi_lo_rad + (ro.phi_hi_rad - ro.phi_lo_rad) * t / duration;
     times[std::size_t(k)] = t;
     phi(k, 0) = p;

@@ -8,18 +8,22 @@
 #include <numbers>
 
 #include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/lever_chain.hpp"
 #include "kinetofem/mechanisms/motion_law.hpp"
 #include "kinetofem/mechanisms/path_straightness.hpp"
+#include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0;
+using units::kDeg;
+using units::kMm;
 }  // namespace
 
 const std::vector<KeySpec>& lever_chain_kinematics_schema() {
@@ -40,14 +44,11 @@ const std::vector<KeySpec>& lever_chain_kinematics_schema() {
       {.path = "path.samples", .type = Type::Integer, .default_number = 16301, .min = 3, .max = 10000000, .doc = "samples of the lever range for extents and straightness"},
       {.path = "path.straightness_length_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 800, .min = 0, .min_exclusive = true,
        .doc = "horizontal length of the stretch whose band is measured (SPEC §1: almost 800 mm)"},
-      {.path = "motion.law", .type = Type::String, .default_text = "polynomial345", .allowed = {"polynomial345", "cycloidal", "trapezoidal"}, .doc = "motion law of the lever angle"},
       {.path = "motion.start_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0, .min = -180, .max = 180, .doc = "lever angle dphi at t = 0"},
-      {.path = "motion.stroke_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 80, .min = -360, .max = 360, .doc = "lever rotation over the motion"},
-      {.path = "motion.duration_s", .type = Type::Number, .unit = "s", .default_number = 2, .min = 0, .min_exclusive = true, .doc = "duration of the motion"},
-      {.path = "motion.accel_fraction", .type = Type::Number, .default_number = 0.25, .min = 0, .max = 1, .min_exclusive = true, .doc = "trapezoidal: acceleration time fraction"},
-      {.path = "motion.decel_fraction", .type = Type::Number, .default_number = 0.25, .min = 0, .max = 1, .min_exclusive = true, .doc = "trapezoidal: deceleration time fraction"},
       {.path = "motion.output_times", .type = Type::Integer, .default_number = 101, .min = 2, .max = 1000000, .doc = "output times over the motion, both ends included"},
     });
+    add_motion_law_keys(s, "motion.", "law",
+                        {.default_law = "polynomial345", .default_stroke_deg = 80.0, .default_duration_s = 2.0, .angles_only = true});
     return s;
   }();
   return schema;
@@ -91,13 +92,9 @@ MechanismCaseSummary run_lever_chain_kinematics(const CaseFile& c, const RunOpti
   const auto st_h = mech::horizontal_straightness(path.h_m, window, g.a_m + g.h_m);
 
   // ---- motion ---------------------------------------------------------------
-  const std::string law_name = c.text_value("motion.law");
-  const double stroke = c.number("motion.stroke_deg"), duration = c.number("motion.duration_s");
-  std::unique_ptr<mech::MotionLaw> law;
-  if (law_name == "cycloidal") law = std::make_unique<mech::CycloidalLaw>(stroke, duration);
-  else if (law_name == "trapezoidal")
-    law = std::make_unique<mech::TrapezoidalLaw>(stroke, duration, c.number("motion.accel_fraction"), c.number("motion.decel_fraction"));
-  else law = std::make_unique<mech::Polynomial345Law>(stroke, duration);
+  const std::shared_ptr<const mech::MotionLaw> law = read_motion_law(c, "motion.", "law", /*angle=*/true);
+  const double duration = law->duration();
+  const std::vector<double> times_grid = mech::equally_spaced_times(duration, c.integer("motion.output_times"));
   const double start = c.number("motion.start_deg");
   const long T = c.integer("motion.output_times");
   std::vector<double> times(std::size_t(T), 0.0);
@@ -105,7 +102,7 @@ MechanismCaseSummary run_lever_chain_kinematics(const CaseFile& c, const RunOpti
   post::FieldMatrix cp(T, 2), cv(T, 2), ca(T, 2), cs(T, 2), hp(T, 2), hv(T, 2), ha(T, 2), hs(T, 2);
   double peak_speed_h = 0, peak_accel_h = 0;
   for (long k = 0; k < T; ++k) {
-    const double t = duration * double(k) / double(T - 1);
+    const double t = times_grid[std::size_t(k)];
     times[std::size_t(k)] = t;
     const mech::MotionState m = law->at(t);
     mech::LeverChainPose p;

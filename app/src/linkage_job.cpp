@@ -459,12 +459,6 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
   std::printf("%s\n", run.results.format_checks().c_str());
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());
-  const pipeline::PartExtremes pe = pipeline::part_extremes(run.parts);
-  write_run_summary(options.output_dir,
-                    {.name = name, .type = "linkage", .results_file = run.results_file, .wall_time_s = total.seconds(),
-                     .max_von_mises_pa = pe.max_von_mises_pa, .max_displacement_m = pe.max_displacement_m,
-                     .extra = {{"max_abs_drive_effort", run.max_abs_drive_effort},
-                               {"min_chain_tension_n", run.min_chain_tension_n}}});
   return run;
 }
 

@@ -3,6 +3,8 @@
 #include <array>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/motion_keys.hpp"
@@ -111,12 +113,15 @@ void print_published_comparison(const ManipulatorSummary& s, mech::ManipulatorTy
   std::printf("  %-34s %-52s %12s %12s %10s\n", "quantity", "published", "static", "over motion", "ratio*");
   const double s_vm = s.static_max_von_mises_pa, d_vm = s.max_von_mises_pa;
   const double s_u = s.static_max_displacement_m, d_u = s.max_displacement_m;
-  std::printf("  %-34s %-52s %9.3f MPa %9.3f MPa %10.3f\n", "max von Mises", pub.von_mises_source, s_vm / kMpa,
-              d_vm / kMpa, (with_static ? s_vm : d_vm) / pub.von_mises_pa);
-  std::printf("  %-34s %-52s %10.4f mm %10.4f mm %10.3f\n", "max deformation (figure reading)",
-              pub.deformation_figure_source, s_u / kMm, d_u / kMm, (with_static ? s_u : d_u) / pub.deformation_figure_m);
-  std::printf("  %-34s %-52s %10.4f mm %10.4f mm %10.3f\n", "max deformation (text reading)", "SPEC §3, text: about 0.1 mm",
-              s_u / kMm, d_u / kMm, (with_static ? s_u : d_u) / pub.deformation_text_m);
+  const auto statics = [&](double v, double unit, const char* name, int digits) {
+    return with_static ? fmt::format("{:.{}f} {}", v / unit, digits, name) : std::string("-");
+  };
+  std::printf("  %-34s %-52s %13s %9.3f MPa %10.3f\n", "max von Mises", pub.von_mises_source,
+              statics(s_vm, kMpa, "MPa", 3).c_str(), d_vm / kMpa, (with_static ? s_vm : d_vm) / pub.von_mises_pa);
+  std::printf("  %-34s %-52s %13s %10.4f mm %10.3f\n", "max deformation (figure reading)", pub.deformation_figure_source,
+              statics(s_u, kMm, "mm", 4).c_str(), d_u / kMm, (with_static ? s_u : d_u) / pub.deformation_figure_m);
+  std::printf("  %-34s %-52s %13s %10.4f mm %10.3f\n", "max deformation (text reading)", "SPEC §3, text: about 0.1 mm",
+              statics(s_u, kMm, "mm", 4).c_str(), d_u / kMm, (with_static ? s_u : d_u) / pub.deformation_text_m);
   std::printf("  * ratio = computed (static study when enabled) / published. Deformation here is each link's elastic\n"
               "    deformation in its own body frame (rigid-body motion removed), not the assembly's total deformation.\n");
 }
@@ -182,13 +187,6 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   print_published_comparison(summary, def.type, run_case.static_pose.has_value());
   summary.total_seconds = total.seconds();
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", summary.results_file.string().c_str(), summary.total_seconds);
-  write_run_summary(options.output_dir,
-                    {.name = name, .type = "manipulator", .results_file = summary.results_file,
-                     .wall_time_s = summary.total_seconds, .max_von_mises_pa = summary.max_von_mises_pa,
-                     .max_displacement_m = summary.max_displacement_m,
-                     .extra = {{"static_max_von_mises_mpa", summary.static_max_von_mises_pa / kMpa},
-                               {"static_max_displacement_mm", summary.static_max_displacement_m / kMm},
-                               {"max_drive_torque_nm", summary.max_drive_torque_nm}}});
   return summary;
 }
 

@@ -9,15 +9,18 @@
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/path_straightness.hpp"
 #include "kinetofem/mechanisms/q_manipulator.hpp"
+#include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0;
+using units::kDeg;
+using units::kMm;
 }  // namespace
 
 const std::vector<KeySpec>& q_manipulator_schema() {
@@ -69,8 +72,9 @@ MechanismCaseSummary run_q_manipulator(const CaseFile& c, const RunOptions& opti
   std::vector<Eigen::Vector2d> path;
   post::FieldMatrix p(T, 1), hp(T, 2), hv(T, 2), ha(T, 2), links(T, Eigen::Index(lengths.size())), hiso(T, 2);
   double max_iso_deviation = 0.0, peak_speed = 0.0;
+  const std::vector<double> grid = mech::equally_spaced_times(duration, T);
   for (long k = 0; k < T; ++k) {
-    const double t = duration * double(k) / double(T - 1), angle = lo + rate * t;
+    const double t = grid[std::size_t(k)], angle = lo + rate * t;
     times[std::size_t(k)] = t;
     const mech::PointKinematics h = q->point_h(angle);
     p(k, 0) = angle;

@@ -4,29 +4,74 @@
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
+#include "kinetofem/pipeline/run_report.hpp"
 
 namespace kinetofem::app {
+
+namespace {
+
+using units::kMm;
+using units::kMpa;
+
+RunSummary summary_of(const FeStaticSummary& s) {
+  return {.type = "fe_static", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
+          .max_displacement_m = s.max_displacement_m,
+          .extra = {{"dofs", double(s.dof_count)}, {"reaction_balance", s.reaction_balance}}};
+}
+
+RunSummary summary_of(const ManipulatorSummary& s) {
+  return {.type = "manipulator", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
+          .max_displacement_m = s.max_displacement_m,
+          .extra = {{"static_max_von_mises_mpa", s.static_max_von_mises_pa / kMpa},
+                    {"static_max_displacement_mm", s.static_max_displacement_m / kMm},
+                    {"max_drive_torque_nm", s.max_drive_torque_nm},
+                    {"min_chain_tension_n", s.min_chain_tension_n}}};
+}
+
+RunSummary summary_of(const LinkageRun& r) {
+  const pipeline::PartExtremes pe = pipeline::part_extremes(r.parts);
+  RunSummary s{.type = "linkage", .results_file = r.results_file, .max_von_mises_pa = pe.max_von_mises_pa,
+               .max_displacement_m = pe.max_displacement_m,
+               .extra = {{"max_abs_drive_effort", r.max_abs_drive_effort}}};
+  if (!r.results.frames.empty() && !r.results.frames.front().chains.empty())
+    s.extra.push_back({"min_chain_tension_n", r.min_chain_tension_n});
+  return s;
+}
+
+RunSummary summary_of(const MechanismCaseSummary& m, const char* type) {
+  return {.type = type, .results_file = m.results_file, .extra = m.values};
+}
+
+}  // namespace
 
 const std::vector<CaseType>& case_types() {
   static const std::vector<CaseType> types = {
       {"fe_static", "one linear-elastic part under static loads", &fe_static_schema,
-       [](const CaseFile& c, const RunOptions& o) { run_fe_static(c, o); return 0; }},
+       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_fe_static(c, o)); }},
       {"manipulator",
        "lever-chain or lever manipulator: motion, loads on every link, stress over the motion",
-       &manipulator_schema,
-       [](const CaseFile& c, const RunOptions& o) { run_manipulator(c, o); return 0; }},
-      {"linkage", "any planar linkage (bodies, joints, chains, springs, drives): dynamics, reactions, drive efforts",
-       &linkage_schema, [](const CaseFile& c, const RunOptions& o) { run_linkage(c, o); return 0; }},
+       &manipulator_schema, [](const CaseFile& c, const RunOptions& o) { return summary_of(run_manipulator(c, o)); }},
+      {"linkage",
+       "any planar linkage (bodies, joints, chains, springs, drives): dynamics, reactions, drive efforts, and the "
+       "stress of its FE parts (parametric links or CAD files) over the motion",
+       &linkage_schema, [](const CaseFile& c, const RunOptions& o) { return summary_of(run_linkage(c, o)); }},
       {"lever_chain_kinematics", "SPEC §1 lever-chain: synthesis, paths of C and H, straightness, speeds for a motion law",
-       &lever_chain_kinematics_schema, [](const CaseFile& c, const RunOptions& o) { run_lever_chain_kinematics(c, o); return 0; }},
+       &lever_chain_kinematics_schema,
+       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_lever_chain_kinematics(c, o), "lever_chain_kinematics"); }},
       {"four_bar_study", "SPEC §2 lever-chain vs equivalent four-bar over the same lever motion",
-       &four_bar_study_schema, [](const CaseFile& c, const RunOptions& o) { run_four_bar_study(c, o); return 0; }},
+       &four_bar_study_schema,
+       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_four_bar_study(c, o), "four_bar_study"); }},
       {"q_manipulator", "SPEC §4 Q-manipulator: path of H, cusps, isokinematic equivalent",
-       &q_manipulator_schema, [](const CaseFile& c, const RunOptions& o) { run_q_manipulator(c, o); return 0; }},
+       &q_manipulator_schema,
+       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_q_manipulator(c, o), "q_manipulator"); }},
       {"spherical_manipulator", "SPEC §5 spherical 3-DoF manipulator: straight-line motion, inverse dynamics, forward check",
-       &spherical_manipulator_schema, [](const CaseFile& c, const RunOptions& o) { run_spherical_manipulator(c, o); return 0; }},
+       &spherical_manipulator_schema,
+       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_spherical_manipulator(c, o), "spherical_manipulator"); }},
       {"gripper_study", "SPEC §6 crank-slider gripper: U_V over phi, operating ranges, widest design",
-       &gripper_study_schema, [](const CaseFile& c, const RunOptions& o) { run_gripper_study(c, o); return 0; }},
+       &gripper_study_schema,
+       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_gripper_study(c, o), "gripper_study"); }},
   };
   return types;
 }
@@ -52,7 +97,13 @@ int run_case(const RunOptions& options) {
       /*allow_unknown=*/true, options.overrides);
   const CaseType& type = case_type_named(any.text_value("case.type"), options.case_path.string() + ": ");
   const CaseFile c = CaseFile::load(options.case_path, type.schema(), /*allow_unknown=*/false, options.overrides);
-  return type.run(c, options);
+  Stopwatch clock;
+  RunSummary summary = type.run(c, options);
+  // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml, for every case type.
+  summary.name = summary.results_file.stem().string();
+  summary.wall_time_s = clock.seconds();
+  write_run_summary(options.output_dir, summary);
+  return 0;
 }
 
 }  // namespace kinetofem::app

@@ -11,6 +11,7 @@
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/spherical_manipulator.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
@@ -18,7 +19,8 @@ namespace kinetofem::app {
 
 namespace {
 using Type = KeySpec::Type;
-constexpr double kMm = 1e-3, kDeg = std::numbers::pi / 180.0;
+using units::kDeg;
+using units::kMm;
 }  // namespace
 
 const std::vector<KeySpec>& spherical_manipulator_schema() {

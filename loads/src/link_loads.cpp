@@ -71,6 +71,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
               joint.name);
     mesh.face_set(attachment.face_set);  // throws naming the sets present
     a.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    a.revolute = joint.type == mech::JointType::Revolute;
     joints_.push_back(std::move(a));
   }
   for (const auto& attachment : link.point_masses) {
@@ -237,6 +238,33 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
     const Eigen::Vector3d force = R_T * pf.force_world;
     pf.coupling->add(force, Eigen::Vector3d::Zero(), pf.point_body, out.forces);
     magnitude += force.norm();
+  }
+
+  // Out of the plane: the planar multibody model gives no force along the
+  // pins and no moment about the in-plane axes, but a part whose loads do not
+  // lie in its mid-plane z = 0 (a CAD part not symmetric about it, a mass
+  // mounted off it) needs them, and a pin carries them (a revolute joint holds
+  // the moments normal to its axis). They are given to the pins of the part,
+  // split equally (one statically admissible choice; the planar components
+  // are untouched and checked below).
+  {
+    Eigen::Vector3d F_all, M_centre;
+    std::vector<const fem::DistributingCoupling*> pins;
+    for (const auto& a : joints_)
+      if (a.revolute) pins.push_back(a.coupling.get());
+    if (pins.empty())
+      for (const auto& a : joints_) pins.push_back(a.coupling.get());
+    if (!pins.empty()) {
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (const auto* p : pins) centre += p->centroid();
+      centre /= double(pins.size());
+      fem::resultant(mesh, out.forces, centre, F_all, M_centre);
+      const Eigen::Vector3d force(0.0, 0.0, -F_all.z() / double(pins.size()));
+      const Eigen::Vector3d moment(-M_centre.x() / double(pins.size()), -M_centre.y() / double(pins.size()), 0.0);
+      for (const auto* p : pins) p->add(force, moment, p->centroid(), out.forces);
+      out.out_of_plane_moment_nm = M_centre.head<2>().norm();
+      out.out_of_plane_force_n = std::abs(F_all.z());
+    }
   }
 
   Eigen::Vector3d F, M;

@@ -37,6 +37,7 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
     for (std::size_t k = 0; k < count; ++k) {
       const LinkLoadResult r = loads.loads_at(frames[first + k]);
       env.worst_equilibrium_residual = std::max(env.worst_equilibrium_residual, r.equilibrium_residual);
+      env.max_out_of_plane_moment_nm = std::max(env.max_out_of_plane_moment_nm, r.out_of_plane_moment_nm);
       F.col(Eigen::Index(k)) = r.forces;
     }
     clock.restart();

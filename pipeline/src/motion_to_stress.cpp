@@ -36,10 +36,14 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
   });
 
   Stopwatch clock;
-  const std::vector<Part> parts = build_part_models(c.parts, c.material, c.mesh, log);
+  const std::vector<Part> parts =
+      in_stage(c, "the parts cannot be built", [&] { return build_part_models(c.parts, c.material, c.mesh, log); });
   run.meshing_seconds = clock.seconds();
-  apply_mass_properties(run.model, parts, log);
-  for (const auto& part : parts) check_part_against_model(part, run.model);
+  in_stage(c, "a part does not fit the linkage", [&] {
+    apply_mass_properties(run.model, parts, log);
+    for (const auto& part : parts) check_part_against_model(part, run.model);
+    return 0;
+  });
 
   const mech::MultibodySystem system = in_stage(c, "the linkage is not valid", [&] { return mech::MultibodySystem(run.model); });
   log.info("dynamics: {} output times over {:.4g} s", c.times.size(), c.times.back() - c.times.front());
@@ -53,14 +57,24 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     run.static_pose = in_stage(c, "the static study's pose cannot be reached",
                                [&] { return solve_static_pose(run.model, *c.static_pose); });
 
-  std::error_code ec;
-  std::filesystem::create_directories(c.results_file.parent_path(), ec);
-  if (ec) fail("{}: cannot create the output directory: {}", c.results_file.parent_path().string(), ec.message());
+  // A bare file name ("run.h5") is written in the working directory: there
+  // is no directory to create (create_directories("") is an error).
+  if (c.results_file.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(c.results_file.parent_path(), ec);
+    if (ec) fail("{}: cannot create the output directory: {}", c.results_file.parent_path().string(), ec.message());
+  }
   post::ResultsWriter writer(c.results_file, c.provenance);
-  for (const auto& part : parts)
-    run.parts.push_back(
-        analyse_part_over_motion(part, run.model, run.motion.frames, run.static_pose, writer, c.stress, log));
-  write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
+  in_stage(c, "the stress of the parts cannot be computed or written", [&] {
+    for (const auto& part : parts)
+      run.parts.push_back(
+          analyse_part_over_motion(part, run.model, run.motion.frames, run.static_pose, writer, c.stress, log));
+    return 0;
+  });
+  in_stage(c, "the histories cannot be written", [&] {
+    write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
+    return 0;
+  });
   writer.commit();
   return run;
 }

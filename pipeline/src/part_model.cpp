@@ -8,6 +8,7 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/solver/couplings.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -117,10 +118,12 @@ struct FaceSetCircle {
 };
 
 FaceSetCircle circle_of(const fem::Mesh& mesh, const std::string& face_set) {
-  const std::vector<fem::Index> nodes = fem::nodes_of_faces(mesh.face_set(face_set));
+  // The area-weighted centroid (exact for a full cylinder whatever the node
+  // spacing, unlike the mean of the nodes).
+  const fem::DistributingCoupling coupling(mesh, face_set);
+  const std::vector<fem::Index>& nodes = coupling.nodes();
   FaceSetCircle c;
-  for (fem::Index n : nodes) c.centre += mesh.nodes.row(n).head<2>().transpose();
-  c.centre /= double(std::max<std::size_t>(nodes.size(), 1));
+  c.centre = coupling.centroid().head<2>();
   for (fem::Index n : nodes) c.radius_m += (mesh.nodes.row(n).head<2>().transpose() - c.centre).norm();
   c.radius_m /= double(std::max<std::size_t>(nodes.size(), 1));
   return c;

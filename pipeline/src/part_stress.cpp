@@ -44,6 +44,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     body.write_static("static_displacement", "m", u, post::kVectorComponents);
     body.write_static("static_von_mises", "Pa", s.von_mises_pa);
     body.write_static("static_stress", "Pa", s.stress_pa, post::kVoigtComponents);
+    ps.has_static_study = true;
     ps.static_von_mises_pa = s.von_mises_pa.maxCoeff();
     ps.static_displacement_m = fem::displacement_magnitude(u).maxCoeff();
   };
@@ -71,13 +72,14 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.right_hand_sides = long(frames.size());
   ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
   ps.worst_support_reaction = env.worst_support_reaction;
+  ps.max_out_of_plane_moment_nm = env.max_out_of_plane_moment_nm;
   ps.iterative_solver = env.iterative_solver;
   ps.solver_summary = env.solver_summary;
   const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
   log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
-           "loads in equilibrium to {:.1e}, support reactions {:.1e}",
+           "loads in equilibrium to {:.1e}, support reactions {:.1e}; out-of-plane moment on the pins up to {:.3g} N m",
            ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0], at[1],
-           at[2], env.worst_equilibrium_residual, env.worst_support_reaction);
+           at[2], env.worst_equilibrium_residual, env.worst_support_reaction, ps.max_out_of_plane_moment_nm);
   return ps;
 }
 

@@ -517,7 +517,6 @@ ResultsWriter::~ResultsWriter() {
 }
 
 const std::filesystem::path& ResultsWriter::path() const { return file_->final_h5; }
-std::filesystem::path ResultsWriter::xdmf_path() const { return file_->final_xdmf; }
 bool ResultsWriter::committed() const { return file_->committed; }
 
 BodyWriter& ResultsWriter::add_body(const std::string& name, const fem::Mesh& mesh) {

@@ -1,5 +1,7 @@
 #include "kinetofem/mechanisms/multibody/results.hpp"
 
+#include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
+
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -126,11 +128,11 @@ Frame make_frame(const MultibodySystem& system, double t, const VectorXd& q, con
       ChainFrame cf;
       cf.name = blk.name;
       cf.tension_N = lambda(0);
-      const Vector2d e = jf.on_i.point_world - jf.on_j.point_world;
-      const double d = e.norm(), r = blk.radius_m;
-      cf.free_length_m = std::sqrt(d * d - r * r);
+      const double r = blk.radius_m;
+      const ChainTangent tangent = chain_tangent(jf.on_i.point_world, jf.on_j.point_world, r, blk.sigma);
+      cf.free_length_m = tangent.free_length_m;
       const double theta_j = system.com_pose(blk.body_j, q).z();
-      cf.wrap_angle_rad = blk.sigma * (theta_j - std::atan2(e.y(), e.x()) - blk.sigma * std::acos(r / d));
+      cf.wrap_angle_rad = blk.sigma * (theta_j - tangent.tangent_angle_rad);
       // Nearest to the constraint's value, as in system.cpp.
       const double target = (blk.reference - cf.free_length_m) / r;
       cf.wrap_angle_rad += 2.0 * M_PI * std::round((target - cf.wrap_angle_rad) / (2.0 * M_PI));

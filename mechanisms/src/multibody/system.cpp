@@ -1,5 +1,7 @@
 #include "kinetofem/mechanisms/multibody/system.hpp"
 
+#include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -116,12 +118,13 @@ MultibodySystem::MultibodySystem(MultibodyModel model) : model_(std::move(model)
           blk.reference = *joint.reference;
         } else {
           const Vector3d pi = com_pose(blk.body_i, q0), pj = com_pose(blk.body_j, q0);
-          const Vector2d e = pi.head<2>() + rotation(pi.z()) * blk.s_i - pj.head<2>() - rotation(pj.z()) * blk.s_j;
-          const double d = e.norm(), r = blk.radius_m;
+          const Vector2d hinge = pi.head<2>() + rotation(pi.z()) * blk.s_i;
+          const Vector2d centre = pj.head<2>() + rotation(pj.z()) * blk.s_j;
+          const double d = (hinge - centre).norm(), r = blk.radius_m;
           require(d > r, "joint '{}': chain hinge lies within the roller in the initial poses (|A B0| = {} m, r = {} m)",
                   joint.name, d, r);
-          const double tau = std::atan2(e.y(), e.x()) + blk.sigma * std::acos(r / d);
-          blk.reference = std::sqrt(d * d - r * r) + r * blk.sigma * (pj.z() - tau);
+          const ChainTangent tangent = chain_tangent(hinge, centre, r, blk.sigma);
+          blk.reference = tangent.free_length_m + r * blk.sigma * (pj.z() - tangent.tangent_angle_rad);
         }
         break;
       }
@@ -356,9 +359,9 @@ BlockValues MultibodySystem::evaluate(const ConstraintBlock& blk, const VectorXd
       const double d2 = e.squaredNorm(), d = std::sqrt(d2);
       require(d > r, "chain '{}': hinge point within the roller (|A B0| = {} m, r = {} m) at t = {} s", blk.name, d, r,
               t);
-      const double b = std::sqrt(d2 - r * r);
-      const double tau = std::atan2(e.y(), e.x()) + sg * std::acos(r / d);
-      const double raw = b + r * sg * (pj.theta - tau) - blk.reference;
+      const ChainTangent tangent = chain_tangent(pi.r, pj.r, r, sg);
+      const double b = tangent.free_length_m;
+      const double raw = b + r * sg * (pj.theta - tangent.tangent_angle_rad) - blk.reference;
       const double period = 2.0 * std::numbers::pi * r;
       out.phi(0) = raw - period * std::round(raw / period);
       const Vector2d g = (b * e - sg * r * perp(e)) / d2;
@@ -479,10 +482,6 @@ void add_point_force(std::vector<Vector3d>& loads, int body, const Vector2d& arm
 }
 
 }  // namespace
-
-Vector3d MultibodySystem::applied_load(int body, const VectorXd& q, const VectorXd& qd, double t) const {
-  return applied_loads(q, qd, t)[body];
-}
 
 std::vector<Vector3d> MultibodySystem::applied_loads(const VectorXd& q, const VectorXd& qd, double t) const {
   std::vector<Vector3d> loads(model_.bodies.size(), Vector3d::Zero());

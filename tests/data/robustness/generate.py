@@ -139,7 +139,7 @@ def sub(base, old, new):
     assert old in base, old
     return base.replace(old, new, 1)
 
-E = {'malformed_toml_unclosed_table': "case.toml:18:10: TOML syntax error: Error while parsing table header: expected ']'", 'malformed_toml_duplicate_key': "case.toml:21:17: TOML syntax error: Error while parsing key-value pair: cannot redefine existing floating-point 'poisson_ratio'", 'malformed_toml_unterminated_string': 'case.toml:28:14: TOML syntax error: Error while parsing string', 'malformed_toml_binary_garbage': 'case.toml:3:1: TOML syntax error: Error while parsing root table', 'empty_case_file': "case.toml: required key 'case.type' is missing", 'unknown_key_typo': 'case.toml:15: unknown key \'mesh.element_sise_mm\' (allowed here: "element_size_mm"', 'unknown_table': "case.toml:18: unknown key 'materials' (allowed here:", 'missing_case_type': "case.toml: required key 'case.type' is missing", 'unknown_case_type': 'case.toml: case.type = "fe_statik" is not a known case type', 'missing_force_total': "case.toml: key 'force[0].total_n' is required", 'missing_mechanism_type': "case.toml: required key 'mechanism.type' is missing", 'mistyped_string_for_number': "case.toml:15: key 'mesh.element_size_mm' must be a number (in mm)", 'mistyped_float_for_integer': "case.toml:16: key 'mesh.order' must be an integer", 'mistyped_table_for_array_of_tables': "case.toml:23: key 'support' must be an array of tables ([[support]])", 'mistyped_vector_two_components': "case.toml:29: key 'force[].total_n' must be an array of 3 numbers", 'mistyped_axis_name': 'case.toml:25: key \'support[].fixed\' holds "w": use only "x", "y", "z"', 'geometry_file_key_missing': 'case.toml: key \'geometry.file\' is required when geometry.kind = "file"', 'zero_length': "case.toml:7: key 'geometry.length_mm' = 0 mm is out of range: must be >0 mm", 'negative_thickness': "case.toml:9: key 'geometry.thickness_mm' = -25 mm is out of range: must be >0 mm", 'negative_density': "case.toml:21: key 'material.density_kg_m3' = -7850 kg/m^3 is out of range: must be >=0 kg/m^3", 'zero_youngs_modulus': "case.toml:19: key 'material.youngs_modulus_mpa' = 0 MPa is out of range: must be >0 MPa", 'poisson_ratio_half': "case.toml:20: key 'material.poisson_ratio' = 0.5 is out of range: must be >=-1 and <=0.4999", 'poisson_ratio_above_half': "case.toml:20: key 'material.poisson_ratio' = 0.7 is out of range: must be >=-1 and <=0.4999", 'negative_element_size': "case.toml:15: key 'mesh.element_size_mm' = -20 mm is out of range: must be >0 mm", 'bore_larger_than_boss': 'case.toml: [geometry]: lever bore_diameter_m = 0.095 must be smaller than width_m = 0.08', 'negative_payload_mass': "case.toml:15: key 'payload.casting_mass_kg' = -15 kg is out of range: must be >=0 kg", 'zero_lever_length_manipulator': "case.toml:7: key 'mechanism.a_mm' = 0 mm is out of range: must be >0 mm", 'zero_duration': "case.toml:20: key 'motion.duration_s' = 0 s is out of range: must be >0 s", 'one_output_time': "case.toml:21: key 'motion.output_times' = 1 is out of range: must be >=2 and <=100000", 'trapezoid_fractions_over_one': 'case.toml: [motion]: trapezoidal law: need kP > 0, kT > 0, kP + kT <= 1, got kP = 0.7, kT = 0.6', 'gravity_out_of_plane': "case.toml:11: key 'mechanism.gravity_m_s2' = [0, -9.80665, 1]: the z component (along the pins) must be 0", 'nan_youngs_modulus': "case.toml:19: key 'material.youngs_modulus_mpa' = nan is not a finite number", 'inf_force': "case.toml:29: key 'force[].total_n' = inf is not a finite number", 'negative_inf_gravity_manipulator': "case.toml:11: key 'mechanism.gravity_m_s2' = -inf is not a finite number", 'nan_stroke': "case.toml:19: key 'motion.stroke_deg' = nan is not a finite number", 'lever_stroke_past_assembly_limit': "case.toml: the motion cannot be run: mechanism 'lever manipulator' cannot be assembled at t = ", 'lever_dead_centre_in_motion': 'a limit of assembly or dead centre lies in between', 'lever_dead_centre_kinetostatic': "case.toml: the motion cannot be run: mechanism 'lever manipulator' cannot be assembled at t = 1.96 s", 'lever_chain_slack_gravity_reversed': "case.toml: the motion cannot be run: mechanism 'lever-chain manipulator': chain 'chain' goes slack at t = 0 s", 'lever_chain_inconsistent_dimensions': 'case.toml: [links]: arm length_m = 0.05 must exceed', 'rigid_body_modes_left': 'no support fixes displacements along y, z', 'no_supports': 'case.toml: no [[support]]: a static model needs supports', 'support_set_not_in_mesh': 'case.toml:24: key \'support[0].set\' = "bore_B": the mesh has no node set of that name (present: bore_A, bore_A0', 'factor_exceeds_memory_limit': 'more than the 0.001 GB allowed', 'msh_missing': 'cube.msh: no such mesh file', 'msh_empty': 'cube.msh: the mesh file is empty', 'msh_not_a_mesh': 'cube.msh: not a Gmsh .msh file (it does not start with $MeshFormat)', 'msh_truncated': 'cube.msh: the mesh file is truncated', 'msh_corrupt_node_line': "cube.msh: $Entities: an entity's coordinates: 'zz' is not a number", 'msh_inverted_tet': 'cube.msh: element 2 (TET4) is inverted or degenerate', 'msh_without_physical_groups': 'case.toml:17: key \'support[0].set\' = "fixed": the mesh has no node set of that name (present: none)', 'msh_element_refers_to_missing_node': 'cube.msh: $Elements: element 8 refers to node 99, which the file does not hold', 'msh_nan_coordinate': 'cube.msh: mesh node 1 has a non-finite coordinate', 'msh_surface_only': 'cube.msh: the mesh has no volume elements', 'msh_duplicate_group_name': "cube.msh: physical group name 'loaded' is used twice", 'case_file_missing': 'nothere.toml: case file does not exist', 'case_path_is_directory': 'sub: is a directory, expected a case file', 'output_dir_under_regular_file': '@FILE@/out: cannot create the output directory: Not a directory', 'output_dir_in_proc': '/proc/kinetofem-out: cannot create the output directory', 'disk_full_fe_static': "@OUT@/r.h5.tmp': file write failed", 'disk_full_manipulator': "@OUT@/r.h5.tmp': file write failed"}
+E = {'malformed_toml_unclosed_table': "case.toml:18:10: TOML syntax error: Error while parsing table header: expected ']'", 'malformed_toml_duplicate_key': "case.toml:21:17: TOML syntax error: Error while parsing key-value pair: cannot redefine existing floating-point 'poisson_ratio'", 'malformed_toml_unterminated_string': 'case.toml:28:14: TOML syntax error: Error while parsing string', 'malformed_toml_binary_garbage': 'case.toml:3:1: TOML syntax error: Error while parsing root table', 'empty_case_file': "case.toml: required key 'case.type' is missing", 'unknown_key_typo': 'case.toml:15: unknown key \'mesh.element_sise_mm\' (allowed here: "element_size_mm"', 'unknown_table': "case.toml:18: unknown key 'materials' (allowed here:", 'missing_case_type': "case.toml: required key 'case.type' is missing", 'unknown_case_type': 'case.toml: case.type = "fe_statik" is not a known case type', 'missing_force_total': "case.toml: key 'force[0].total_n' is required", 'missing_mechanism_type': "case.toml: required key 'mechanism.type' is missing", 'mistyped_string_for_number': "case.toml:15: key 'mesh.element_size_mm' must be a number (in mm)", 'mistyped_float_for_integer': "case.toml:16: key 'mesh.order' must be an integer", 'mistyped_table_for_array_of_tables': "case.toml:23: key 'support' must be an array of tables ([[support]])", 'mistyped_vector_two_components': "case.toml:29: key 'force[].total_n' must be an array of 3 numbers", 'mistyped_axis_name': 'case.toml:25: key \'support[].fixed\' holds "w": use only "x", "y", "z"', 'geometry_file_key_missing': 'case.toml: key \'geometry.file\' is required when geometry.kind = "file"', 'zero_length': "case.toml:7: key 'geometry.length_mm' = 0 mm is out of range: must be >0 mm", 'negative_thickness': "case.toml:9: key 'geometry.thickness_mm' = -25 mm is out of range: must be >0 mm", 'negative_density': "case.toml:21: key 'material.density_kg_m3' = -7850 kg/m^3 is out of range: must be >=0 kg/m^3", 'zero_youngs_modulus': "case.toml:19: key 'material.youngs_modulus_mpa' = 0 MPa is out of range: must be >0 MPa", 'poisson_ratio_half': "case.toml:20: key 'material.poisson_ratio' = 0.5 is out of range: must be >=-1 and <=0.4999", 'poisson_ratio_above_half': "case.toml:20: key 'material.poisson_ratio' = 0.7 is out of range: must be >=-1 and <=0.4999", 'negative_element_size': "case.toml:15: key 'mesh.element_size_mm' = -20 mm is out of range: must be >0 mm", 'bore_larger_than_boss': 'case.toml: [geometry]: lever bore_diameter_m = 0.095 must be smaller than width_m = 0.08', 'negative_payload_mass': "case.toml:15: key 'payload.casting_mass_kg' = -15 kg is out of range: must be >=0 kg", 'zero_lever_length_manipulator': "case.toml:7: key 'mechanism.a_mm' = 0 mm is out of range: must be >0 mm", 'zero_duration': "case.toml:20: key 'motion.duration_s' = 0 s is out of range: must be >0 s", 'one_output_time': "case.toml:21: key 'motion.output_times' = 1 is out of range: must be >=2 and <=100000", 'trapezoid_fractions_over_one': 'case.toml:18: key \'motion.law\': motion law "trapezoidal": accel_fraction 0.7 and decel_fraction 0.6 must be positive with a sum of at most 1', 'gravity_out_of_plane': "case.toml:11: key 'mechanism.gravity_m_s2' = [0, -9.80665, 1]: the z component (along the pins) must be 0", 'nan_youngs_modulus': "case.toml:19: key 'material.youngs_modulus_mpa' = nan is not a finite number", 'inf_force': "case.toml:29: key 'force[].total_n' = inf is not a finite number", 'negative_inf_gravity_manipulator': "case.toml:11: key 'mechanism.gravity_m_s2' = -inf is not a finite number", 'nan_stroke': "case.toml:19: key 'motion.stroke_deg' = nan is not a finite number", 'lever_stroke_past_assembly_limit': "case.toml: the motion cannot be run: mechanism 'lever manipulator' cannot be assembled at t = ", 'lever_dead_centre_in_motion': 'a limit of assembly or dead centre lies in between', 'lever_dead_centre_kinetostatic': "case.toml: the motion cannot be run: mechanism 'lever manipulator' cannot be assembled at t = 1.96 s", 'lever_chain_slack_gravity_reversed': "case.toml: the motion cannot be run: mechanism 'lever-chain manipulator': chain 'chain' goes slack at t = 0 s", 'lever_chain_inconsistent_dimensions': "case.toml: [links]: part 'arm' (link 2 with roller): arm length_m = 0.05 must exceed", 'rigid_body_modes_left': 'no support fixes displacements along y, z', 'no_supports': 'case.toml: no [[support]]: a static model needs supports', 'support_set_not_in_mesh': 'case.toml:24: key \'support[0].set\' = "bore_B": the mesh has no node set of that name (present: bore_A, bore_A0', 'factor_exceeds_memory_limit': 'more than the 0.001 GB allowed', 'msh_missing': 'cube.msh: no such mesh file', 'msh_empty': 'cube.msh: the mesh file is empty', 'msh_not_a_mesh': 'cube.msh: not a Gmsh .msh file (it does not start with $MeshFormat)', 'msh_truncated': 'cube.msh: the mesh file is truncated', 'msh_corrupt_node_line': "cube.msh: $Entities: an entity's coordinates: 'zz' is not a number", 'msh_inverted_tet': 'cube.msh: element 2 (TET4) is inverted or degenerate', 'msh_without_physical_groups': 'case.toml:17: key \'support[0].set\' = "fixed": the mesh has no node set of that name (present: none)', 'msh_element_refers_to_missing_node': 'cube.msh: $Elements: element 8 refers to node 99, which the file does not hold', 'msh_nan_coordinate': 'cube.msh: mesh node 1 has a non-finite coordinate', 'msh_surface_only': 'cube.msh: the mesh has no volume elements', 'msh_duplicate_group_name': "cube.msh: physical group name 'loaded' is used twice", 'case_file_missing': 'nothere.toml: case file does not exist', 'case_path_is_directory': 'sub: is a directory, expected a case file', 'output_dir_under_regular_file': '@FILE@/out: cannot create the output directory: Not a directory', 'output_dir_in_proc': '/proc/kinetofem-out: cannot create the output directory', 'disk_full_fe_static': "@OUT@/r.h5.tmp': file write failed", 'disk_full_manipulator': "@OUT@/r.h5.tmp': file write failed"}
 cases = []  # (dir, files{name: text}, expected, extra{args, limits})
 def add(name, files, expected="?", **extra):
     cases.append((name, files, E[name], extra))
@@ -193,7 +193,7 @@ add("lever_chain_inconsistent_dimensions", {"case.toml": sub(MAN, "c_mm = 350.0"
 add("rigid_body_modes_left", {"case.toml": sub(FE, 'fixed = ["x", "y", "z"]', 'fixed = ["x"]')})
 add("no_supports", {"case.toml": sub(FE, '[[support]]\nset = "bore_A0"\nfixed = ["x", "y", "z"]\n', "")})
 add("support_set_not_in_mesh", {"case.toml": sub(FE, 'set = "bore_A0"', 'set = "bore_B"')})
-add("factor_exceeds_memory_limit", {"case.toml": FE + "\n[solver]\nmethod = \"direct\"\nmax_factor_gb = 0.001\n"})
+add("factor_exceeds_memory_limit", {"case.toml": FE + "\n[solver]\nmax_factor_gb = 0.001\nmethod = \"direct\"\n"})
 # --- meshes
 add("msh_missing", {"case.toml": CUBE})
 add("msh_empty", {"case.toml": CUBE, "cube.msh": ""})
@@ -213,6 +213,184 @@ add("output_dir_under_regular_file", {"case.toml": FE}, args=["run", "case.toml"
 add("output_dir_in_proc", {"case.toml": FE}, args=["run", "case.toml", "-o", "/proc/kinetofem-out"])
 add("disk_full_fe_static", {"case.toml": FE}, fsize=200000)
 add("disk_full_manipulator", {"case.toml": MAN}, fsize=300000)
+
+# --- linkage cases whose bodies carry FE parts ([[part]], [[face_set]], face keys)
+E.update({'part_file_missing': 'case.toml:38: key \'part[0].file\' = "parts/crank.geo": no such file (parts/crank.geo)', 'part_file_corrupt_step': "part 'crank' (crank.step): crank.step: importing the shape failed: Could not read file 'crank.step'", 'part_file_open_surface_loop': "part 'crank' (block.geo): block.geo: meshing failed: No elements in volume 1", 'part_face_set_not_in_part': "part 'crank' (crank.geo): joint 'B' acts through face set 'bore_A', which the part does not have (it has: bore_B, bore_O)", 'part_face_set_is_curves': "part 'crank' (crank.geo): joint 'B' acts through 'bore_B', which is not a surface of the part (it is a volume, curve or point group); surface sets: bore_O", 'part_unit_too_small_for_joints': "part 'crank' (crank.geo): the part spans 0.1456 mm in the plane but its joints 'O' and 'B' are 100 mm apart: is its length unit right? (expected a part of about 100 mm or more)", 'part_placed_off_its_bores': "part 'crank' (crank.geo): joint 'O' at (0.000, 0.000) mm (body frame) lies 40.0", 'part_twice_for_one_body': 'case.toml:42: key \'part[1].body\' = "crank": this body already has a part (one part per body)', 'part_lever_bore_wider_than_plate': "part 'crank' (lever): lever bore_diameter_m = 0.035 must be smaller than width_m = 0.03", 'part_msh_surface_only': "part 'crank' (crank.msh): crank.msh: the mesh has no volume elements", 'part_face_set_box_selects_nothing': "part 'crank' (crank.geo): face set 'pin_B' of crank.geo: no surface lies inside box [189.5, -10.5, -15.5, 210.5, 10.5, 15.5] mm; the part spans [-20, -20, -15, 120, 20, 15] mm", 'part_on_the_ground': 'case.toml:42: key \'part[1].body\' = "ground": the ground is rigid; a part belongs to a moving body', 'part_drive_without_face': "case.toml:71: key 'force_drive[0].name': drive 'motor' acts on body 'crank', which has a part: give 'face_j' (a face set of the part)", 'part_face_key_on_body_without_part': "case.toml:62: key 'joint[2].face_j': body 'slider' has no [[part]] to act through", 'part_geo_without_length_unit': "part 'crank' (crank.geo): crank.geo: .geo files carry no length unit: give length_unit", 'part_step_unit_disagrees': "part 'crank' (crank.step): crank.step: length_unit = 1 m per file unit disagrees with the file's own unit, 0.001 m", 'part_dimension_of_other_source': 'case.toml:45: key \'part[0].roller_radius_mm\': not a dimension of a "lever" part', 'trapezoid_zero_accel_fraction_manipulator': "case.toml:19: key 'motion.accel_fraction' = 0 is out of range: must be >0 and <=1", 'negative_initial_step': "case.toml:91: key 'simulation.initial_step_s' = -0.001 s is out of range: must be >=0 s"})
+# Base: the slider-crank of cases/mechanisms/slider_crank, the crank an FE part
+# (crank.geo, OpenCASCADE in mm, its bores named by physical surfaces), the rod
+# and the slider rigid. Valid as it stands (checked by hand: it runs in ~1 s).
+LINK = """[case]
+name = "r"
+type = "linkage"
+
+[[body]]
+name = "ground"
+fixed = true
+
+[[body]]
+name = "crank"
+pose_mm_deg = [0.0, 0.0, 30.0]
+
+[[body]]
+name = "rod"
+mass_kg = 2.0
+inertia_kgm2 = 1.5e-2
+com_mm = [150.0, 0.0]
+pose_mm_deg = [86.6025, 50.0, -9.594]
+
+[[body]]
+name = "slider"
+mass_kg = 1.5
+inertia_kgm2 = 1.0e-3
+pose_mm_deg = [382.41, 0.0, 0.0]
+
+[[point]]
+body = "crank"
+name = "pin"
+at_mm = [100.0, 0.0]
+
+[[point]]
+body = "rod"
+name = "end"
+at_mm = [300.0, 0.0]
+
+[[part]]
+body = "crank"
+file = "crank.geo"
+length_unit = "mm"
+
+[[joint]]
+name = "O"
+type = "revolute"
+body_i = "ground"
+body_j = "crank"
+face_j = "bore_O"
+
+[[joint]]
+name = "B"
+type = "revolute"
+body_i = "crank"
+point_i = "pin"
+body_j = "rod"
+face_i = "bore_B"
+
+[[joint]]
+name = "C"
+type = "revolute"
+body_i = "rod"
+point_i = "end"
+body_j = "slider"
+
+[[joint]]
+name = "guide"
+type = "prismatic"
+body_i = "ground"
+body_j = "slider"
+axis = [1.0, 0.0]
+
+[[force_drive]]
+name = "motor"
+body_i = "ground"
+body_j = "crank"
+face_j = "bore_O"
+law = "dc_motor"
+stall_torque_nm = 20.0
+no_load_speed_rpm = 300.0
+
+[mesh]
+element_size_mm = 20.0
+order = 1
+
+[material]
+youngs_modulus_mpa = 210000.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+
+[simulation]
+duration_s = 0.01
+output_times = 3
+"""
+
+# The crank (mm): bore O at the origin, bore B at x = 100 mm, bosses 40 mm
+# (bores 20 mm) x 30 mm, plate 25 x 12 mm. `bores` writes the Physical
+# statements of the bores; `unit` scales the numbers (1e-3: the same crank in m).
+def crank_geo(bores="surfaces", unit=1.0):
+    L = ["// Crank of the slider-crank: bore O at the origin, bore B on +x.", 'SetFactory("OpenCASCADE");',
+         f"s = {unit:g};", "length = 100*s; D = 40*s; d = 20*s; L = 30*s; w = 25*s; t = 12*s; e = 0.5*s;",
+         "Cylinder(1) = {0, 0, -L/2, 0, 0, L, D/2};", "Cylinder(2) = {length, 0, -L/2, 0, 0, L, D/2};",
+         "Box(3) = {0, -w/2, -t/2, length, w, t};", "BooleanUnion(4) = {Volume{1}; Delete;}{Volume{2, 3}; Delete;};",
+         "Cylinder(5) = {0, 0, -L, 0, 0, 2*L, d/2};", "Cylinder(6) = {length, 0, -L, 0, 0, 2*L, d/2};",
+         "BooleanDifference(7) = {Volume{4}; Delete;}{Volume{5, 6}; Delete;};"]
+    box_O = "{-d/2-e, -d/2-e, -L/2-e, d/2+e, d/2+e, L/2+e}"
+    box_B = "{length-d/2-e, -d/2-e, -L/2-e, length+d/2+e, d/2+e, L/2+e}"
+    if bores in ("surfaces", "bore_B_curves"):
+        L.append(f'Physical Surface("bore_O") = Surface In BoundingBox{box_O};')
+    if bores == "surfaces":
+        L.append(f'Physical Surface("bore_B") = Surface In BoundingBox{box_B};')
+    if bores == "bore_B_curves":  # the bore's edge circles, where its surface was meant
+        L.append(f'Physical Curve("bore_B") = Curve In BoundingBox{box_B};')
+    if bores != "none":
+        L.append('Physical Volume("crank") = {7};')
+    return "\n".join(L) + "\n"
+
+# A built-in-kernel block 100 x 20 x 10 mm whose surface loop lacks its top face.
+OPEN_LOOP_GEO = """// A block 100 x 20 x 10 mm, built-in kernel: the surface loop lacks the top face.
+Point(1) = {0, -10, -5}; Point(2) = {100, -10, -5}; Point(3) = {100, 10, -5}; Point(4) = {0, 10, -5};
+Point(5) = {0, -10, 5}; Point(6) = {100, -10, 5}; Point(7) = {100, 10, 5}; Point(8) = {0, 10, 5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Line(9) = {1, 5}; Line(10) = {2, 6}; Line(11) = {3, 7}; Line(12) = {4, 8};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(3) = {1, 10, -5, -9}; Plane Surface(3) = {3};
+Curve Loop(4) = {2, 11, -6, -10}; Plane Surface(4) = {4};
+Curve Loop(5) = {3, 12, -7, -11}; Plane Surface(5) = {5};
+Curve Loop(6) = {4, 9, -8, -12}; Plane Surface(6) = {6};
+Surface Loop(1) = {1, 3, 4, 5, 6};
+Volume(1) = {1};
+"""
+
+REPO = os.path.normpath(os.path.join(ROOT, "..", "..", ".."))
+CRANK_STEP = open(os.path.join(REPO, "cases", "slider_crank_parts", "parts", "crank.step")).read()
+# The crank.step's bores by box (in its mm), as in cases/slider_crank_parts.
+STEP_FACE_SETS = """
+[[face_set]]
+body = "crank"
+name = "bore_O"
+box_mm = [-10.5, -10.5, -15.5, 10.5, 10.5, 15.5]
+
+[[face_set]]
+body = "crank"
+name = "bore_B"
+box_mm = [89.5, -10.5, -15.5, 110.5, 10.5, 15.5]
+"""
+def step_part(text, unit=None):
+    return sub(text, 'file = "crank.geo"\nlength_unit = "mm"\n', 'file = "crank.step"\n' + (f'length_unit = "{unit}"\n' if unit else "")) + STEP_FACE_SETS
+
+LEVER_PART = 'source = "lever"\nlength_mm = 100.0\nwidth_mm = 30.0\nthickness_mm = 12.0\nbore_diameter_mm = 20.0\nboss_diameter_mm = 40.0\nboss_length_mm = 30.0\nangle_deg = -90.0\n'
+def lever_part(text):
+    t = sub(text, 'file = "crank.geo"\nlength_unit = "mm"\n', LEVER_PART)
+    return sub(sub(sub(t, 'face_j = "bore_O"', 'face_j = "bore_A0"'), 'face_i = "bore_B"', 'face_i = "bore_A"'), 'face_j = "bore_O"', 'face_j = "bore_A0"')
+
+G = crank_geo()
+add("part_file_missing", {"case.toml": sub(LINK, 'file = "crank.geo"', 'file = "parts/crank.geo"'), "crank.geo": G})
+add("part_file_corrupt_step", {"case.toml": step_part(LINK), "crank.step": CRANK_STEP[: CRANK_STEP.index("#200 =")]})
+add("part_file_open_surface_loop", {"case.toml": sub(LINK, 'file = "crank.geo"', 'file = "block.geo"'), "block.geo": OPEN_LOOP_GEO})
+add("part_face_set_not_in_part", {"case.toml": sub(LINK, 'face_i = "bore_B"', 'face_i = "bore_A"'), "crank.geo": G})
+add("part_face_set_is_curves", {"case.toml": LINK, "crank.geo": crank_geo(bores="bore_B_curves")})
+add("part_unit_too_small_for_joints", {"case.toml": LINK, "crank.geo": crank_geo(unit=1e-3)})
+add("part_placed_off_its_bores", {"case.toml": sub(LINK, 'length_unit = "mm"\n', 'length_unit = "mm"\noffset_mm = [0.0, 40.0]\n'), "crank.geo": G})
+add("part_twice_for_one_body", {"case.toml": sub(LINK, "[[joint]]", '[[part]]\nbody = "crank"\nfile = "crank.geo"\nlength_unit = "mm"\n\n[[joint]]'), "crank.geo": G})
+add("part_lever_bore_wider_than_plate", {"case.toml": sub(lever_part(LINK), "bore_diameter_mm = 20.0", "bore_diameter_mm = 35.0")})
+add("part_msh_surface_only", {"case.toml": sub(sub(LINK, 'file = "crank.geo"\nlength_unit = "mm"', 'file = "crank.msh"\nlength_unit = "m"'), 'face_i = "bore_B"', 'face_i = "loaded"').replace('face_j = "bore_O"', 'face_j = "fixed"'), "crank.msh": cube_msh(volume=False)})
+add("part_face_set_box_selects_nothing", {"case.toml": sub(sub(LINK, 'face_i = "bore_B"', 'face_i = "pin_B"'), "[[joint]]", '[[face_set]]\nbody = "crank"\nname = "pin_B"\nbox_mm = [189.5, -10.5, -15.5, 210.5, 10.5, 15.5]\n\n[[joint]]'), "crank.geo": G})
+add("part_on_the_ground", {"case.toml": sub(LINK, "[[joint]]", '[[part]]\nbody = "ground"\nfile = "crank.geo"\nlength_unit = "mm"\n\n[[joint]]'), "crank.geo": G})
+add("part_drive_without_face", {"case.toml": sub(LINK, 'body_j = "crank"\nface_j = "bore_O"\nlaw', 'body_j = "crank"\nlaw'), "crank.geo": G})
+add("part_face_key_on_body_without_part", {"case.toml": sub(LINK, 'body_j = "slider"\n\n', 'body_j = "slider"\nface_j = "bore_C"\n\n'), "crank.geo": G})
+add("part_geo_without_length_unit", {"case.toml": sub(LINK, 'length_unit = "mm"\n', ""), "crank.geo": G})
+add("part_step_unit_disagrees", {"case.toml": step_part(LINK, unit="m"), "crank.step": CRANK_STEP})
+add("part_dimension_of_other_source", {"case.toml": sub(lever_part(LINK), "boss_length_mm = 30.0\n", "boss_length_mm = 30.0\nroller_radius_mm = 75.0\n")})
+add("trapezoid_zero_accel_fraction_manipulator", {"case.toml": sub(MAN, 'law = "polynomial345"', 'law = "trapezoidal"\naccel_fraction = 0.0')})
+add("negative_initial_step", {"case.toml": sub(LINK, "output_times = 3", "output_times = 3\ninitial_step_s = -1.0e-3"), "crank.geo": G})
 
 VALID = {"valid_cube": {"case.toml": CUBE, "cube.msh": cube_msh()}}
 

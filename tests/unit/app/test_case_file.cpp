@@ -7,7 +7,9 @@
 
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/fe_static_job.hpp"
+#include "kinetofem/app/case_types.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::app {
@@ -93,16 +95,65 @@ TEST(CaseFile, EveryTemplateDefinesEachTableOnce) {
   // TOML forbids defining a table twice: a key's table may be declared in
   // several places of a schema ([solver] by the manipulator and by the shared
   // solver keys), the template must still write it once.
-  for (const auto& [name, schema] : {std::pair{"fe_static", fe_static_schema()},
-                                     std::pair{"manipulator", manipulator_schema()}}) {
-    const std::string t = schema_template(schema, name);
+  for (const auto& type : case_types()) {
+    const std::string& name = type.name;
+    const std::string t = schema_template(type.schema(), name);
     std::set<std::string> headers;
     std::istringstream in(t);
     for (std::string line; std::getline(in, line);)
       if (line.rfind("[", 0) == 0 && line.rfind("[[", 0) != 0) {
         EXPECT_TRUE(headers.insert(line).second) << name << ": " << line << " twice";
       }
-    EXPECT_EQ(headers.count("[solver]"), 1u) << name;
+    EXPECT_LE(headers.count("[solver]"), 1u) << name;
+  }
+}
+
+TEST(CaseFile, ManipulatorTemplateWritesTheGravityTheJobUses) {
+  // Found when tried: the template wrote gravity_m_s2 = [0.0, 0.0, 0.0] under a
+  // comment saying the default is [0, -9.80665, 0], so a case copied from it
+  // ran without gravity. Reference: standard gravity, ISO 80000-3
+  // (units::kStandardGravity), along -y (SPEC §1: the mechanism in a vertical plane).
+  std::vector<KeySpec> schema = manipulator_schema();
+  for (auto& k : schema) k.required = false;  // the template leaves required keys out
+  const CaseFile from_template = CaseFile::parse(schema_template(schema, "manipulator"), "template.toml", schema);
+  const CaseFile without_key = CaseFile::parse("", "case.toml", schema);
+  const Eigen::Vector3d expected(0.0, -units::kStandardGravity, 0.0);
+  EXPECT_EQ(from_template.vector3("mechanism.gravity_m_s2"), expected);
+  EXPECT_EQ(without_key.vector3("mechanism.gravity_m_s2"), expected);
+}
+
+TEST(CaseFile, EveryTemplateValueIsTheDefaultAnAbsentKeyGets) {
+  // One value per default: a key copied from the template must mean what
+  // leaving it out means, for every case type and every key with a default
+  // (keys of arrays of tables are written commented out, so they are skipped).
+  for (const auto& type : case_types()) {
+    std::vector<KeySpec> schema = type.schema();
+    for (auto& k : schema) k.required = false;  // the template leaves required keys out
+    const CaseFile from_template = CaseFile::parse(schema_template(schema, type.name), "template.toml", schema, true);
+    const CaseFile empty = CaseFile::parse("", "case.toml", schema, true);
+    for (const KeySpec& k : schema) {
+      if (k.path.find("[]") != std::string::npos || k.required) continue;
+      if (!k.default_number && !k.default_text && !k.default_vector) continue;
+      switch (k.type) {
+        case KeySpec::Type::Number:
+          EXPECT_DOUBLE_EQ(from_template.number(k.path), empty.number(k.path)) << type.name << ": " << k.path;
+          break;
+        case KeySpec::Type::Integer:
+          EXPECT_EQ(from_template.integer(k.path), empty.integer(k.path)) << type.name << ": " << k.path;
+          break;
+        case KeySpec::Type::Boolean:
+          EXPECT_EQ(from_template.boolean(k.path), empty.boolean(k.path)) << type.name << ": " << k.path;
+          break;
+        case KeySpec::Type::Vector3:
+          EXPECT_EQ(from_template.vector3(k.path), empty.vector3(k.path)) << type.name << ": " << k.path;
+          break;
+        case KeySpec::Type::String:
+          EXPECT_EQ(from_template.text_value(k.path), empty.text_value(k.path)) << type.name << ": " << k.path;
+          break;
+        default:
+          break;
+      }
+    }
   }
 }
 

@@ -13,7 +13,9 @@ struct CaseType {
   std::string name;
   std::string summary;
   const std::vector<KeySpec>& (*schema)();
-  int (*run)(const CaseFile&, const RunOptions&);
+  // Runs the case and returns its key results; run_case writes them as
+  // OUTPUT_DIR/<name>.summary.toml (name and wall time filled in there).
+  RunSummary (*run)(const CaseFile&, const RunOptions&);
 };
 
 const std::vector<CaseType>& case_types();

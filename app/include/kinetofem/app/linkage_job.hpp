@@ -11,9 +11,16 @@
 // [[force_drive]] (constant, dc_motor, pd_servo), [gravity], [simulation].
 // Lengths in the file are mm, angles deg; inside SI (m, rad).
 //
+// FE parts ([[part]], [[face_set]] and the face keys of the tables that act
+// on a part; app/part_keys.hpp): every moving body may carry a parametric link
+// or a CAD part; the run then computes its stress over the motion through the
+// motion-to-stress pipeline (pipeline/motion_to_stress.hpp), the same as the
+// manipulator cases.
+//
 // Output: results/<name>.h5 (+ .xdmf) with the histories of every body, joint,
-// drive and chain under /mechanism (names in docs/cases.md), and a summary:
-// extremes of drive efforts, reactions and chain tension, and the run's checks
+// drive and chain under /mechanism (names in docs/results.md), each part's
+// fields over the motion, and a summary: extremes of drive efforts, reactions
+// and chain tension, the parts' peak stresses, and the run's checks
 // (mech::Results::format_checks()).
 #include <filesystem>
 #include <string>

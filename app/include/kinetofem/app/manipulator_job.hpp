@@ -5,7 +5,9 @@
 // kinetostatic loads on every link at every output time, one factorization
 // per link and block solves over the motion, stress envelope, a static pose
 // study (gravity and payload), the comparison with the published values of
-// SPEC §3, and one HDF5 + XDMF results file.
+// SPEC §3, and one HDF5 + XDMF results file. The case is a preset of the
+// general motion-to-stress pipeline (pipeline/manipulator_preset.hpp): this
+// job reads the keys and calls the pipeline's driver.
 #include <string>
 #include <vector>
 

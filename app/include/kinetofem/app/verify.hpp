@@ -1,7 +1,10 @@
 #pragma once
 // `kinetofem verify` — the verification suite run in-process by the program
-// itself, against the libraries it is built from (not the test code, which
-// the program does not carry), and written as a report:
+// itself, against the libraries it is built from, and written as a report.
+// The references (SPEC numbers, analytic solutions) and check computations
+// come from the verification library (verification/, kinetofem::verification),
+// the same code the tests under tests/verification/ call; the program needs no
+// source tree (its case files and geometry are compiled in). Reports:
 //   DIR/verification_report.md    (Markdown table)
 //   DIR/verification_report.html  (self-contained HTML, pass/fail in colour)
 //

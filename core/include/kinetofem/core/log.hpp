@@ -14,7 +14,7 @@ namespace kinetofem {
 
 class Log {
  public:
-  enum class Level { Quiet, Normal, Verbose };
+  enum class Level { Quiet, Normal };
   explicit Log(Level level = Level::Normal, std::FILE* stream = stdout)
       : level_(level), stream_(stream) {}
 
@@ -23,11 +23,6 @@ class Log {
   template <typename... Args>
   void info(fmt::format_string<Args...> format, Args&&... args) const {
     if (level_ == Level::Quiet) return;
-    write(fmt::format(format, std::forward<Args>(args)...));
-  }
-  template <typename... Args>
-  void verbose(fmt::format_string<Args...> format, Args&&... args) const {
-    if (level_ != Level::Verbose) return;
     write(fmt::format(format, std::forward<Args>(args)...));
   }
   bool is_quiet() const { return level_ == Level::Quiet; }

@@ -21,6 +21,10 @@
 //   * each drive's effort (torque) on its shaft face, each spring's force
 //     (tension k (L - L0) + c L', from the frame's body states) and each
 //     constant point force, at their points, through distributing couplings.
+// Out of the plane (force along z, moments about x and y: a part or a load
+// off the mid-plane z = 0) the planar model gives no reaction; loads_at hands
+// them to the part's revolute pins, split equally (a pin holds the moments
+// normal to its axis), and reports their size.
 // These loads are in equilibrium when the multibody body has the FE mesh's
 // mass properties (pipeline::apply_mass_properties); loads_at checks it and throws an
 // Error naming the link and the time when the resultant force or moment
@@ -90,6 +94,9 @@ void assign_mass_properties(mech::Body& body, const fem::FeModel& model);
 struct LinkLoadResult {
   Eigen::VectorXd forces;  // 3 N nodal forces, N, body frame
   double equilibrium_residual = 0.0;  // |resultant| relative to the loads' magnitude
+  // What the pins carry out of the plane (see loads_at): |(M_x, M_y)| about
+  // the pins' mean centre, N m, and |F_z|, N, of the other loads.
+  double out_of_plane_moment_nm = 0.0, out_of_plane_force_n = 0.0;
 };
 
 class LinkLoads {
@@ -111,6 +118,7 @@ class LinkLoads {
     int joint_index = -1;
     bool on_i = false;  // this link is the joint's body_i (else body_j)
     BoreLoad distribution;
+    bool revolute = false;  // a pin: carries the out-of-plane moments
     fem::BoreGeometry bore;
     std::unique_ptr<fem::DistributingCoupling> coupling;
   };

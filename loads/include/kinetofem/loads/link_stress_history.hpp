@@ -51,6 +51,7 @@ struct LinkEnvelope {
   int peak_displacement_step = 0;
   double worst_equilibrium_residual = 0.0;
   double worst_support_reaction = 0.0;  // relative to the total load (sum of |f_i|)
+  double max_out_of_plane_moment_nm = 0.0;  // largest moment the pins carry about in-plane axes (LinkLoadResult)
   fem::CholmodStatistics solver;  // on the iterative path: the symbolic analysis only, if any
   bool iterative_solver = false;
   std::string solver_summary;     // fem::LinearStaticAnalysis::solver_summary()

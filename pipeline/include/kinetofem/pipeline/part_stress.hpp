@@ -31,12 +31,14 @@ struct PartSummary {
   long peak_von_mises_node = 0;
   Eigen::Vector3d peak_von_mises_at_m = Eigen::Vector3d::Zero();  // body frame
   double peak_displacement_m = 0, peak_displacement_time_s = 0;
+  bool has_static_study = false;  // the static_* values below were computed
   double static_von_mises_pa = 0, static_displacement_m = 0;
   double factorize_seconds = 0, solve_seconds = 0;
   double assembly_seconds = 0, recovery_seconds = 0, analyze_seconds = 0;
   double factor_nonzeros = 0, factor_bytes = 0, factorization_flops = 0;
   long right_hand_sides = 0;
   double worst_equilibrium_residual = 0, worst_support_reaction = 0;
+  double max_out_of_plane_moment_nm = 0;  // carried by the pins (loads off the mid-plane z = 0)
   bool iterative_solver = false;  // AMG-PCG instead of CHOLMOD (factor too large, or asked for)
   std::string solver_summary;
 };

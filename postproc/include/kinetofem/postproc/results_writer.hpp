@@ -130,7 +130,6 @@ class ResultsWriter {
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
   const std::filesystem::path& path() const;
-  std::filesystem::path xdmf_path() const;
 
   // Writes the body's mesh (validated first) and returns its writer.
   BodyWriter& add_body(const std::string& name, const fem::Mesh& mesh);

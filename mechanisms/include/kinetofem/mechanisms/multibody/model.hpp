@@ -91,18 +91,6 @@ inline Joint make_fixed(std::string name, std::string body_i, std::string point_
   j.type = JointType::Fixed;
   return j;
 }
-// Chain hinged to hinge_body at hinge_point, wrapped on a roller of radius_m
-// centred at roller_point of roller_body.
-inline Joint make_chain(std::string name, std::string hinge_body, std::string hinge_point, std::string roller_body,
-                        std::string roller_point, double radius_m, bool wrap_ccw = true) {
-  Joint j = make_revolute(std::move(name), std::move(hinge_body), std::move(hinge_point), std::move(roller_body),
-                          std::move(roller_point));
-  j.type = JointType::Chain;
-  j.radius_m = radius_m;
-  j.wrap_ccw = wrap_ccw;
-  return j;
-}
-
 // The relative coordinate a drive acts on (and the independent coordinate of the
 // minimal-coordinate path):
 //   Angle:        s = theta_j - theta_i                         (rad)

@@ -131,10 +131,8 @@ class MultibodySystem {
   Eigen::VectorXd mass_diagonal() const;
   // Generalised applied forces Q (gravity, force drives, springs/dampers, point forces).
   Eigen::VectorXd applied_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const;
-  // Applied loads on one body: (Fx, Fy, moment about its centre of mass), world frame;
-  // also valid for the ground.
-  Eigen::Vector3d applied_load(int body, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const;
-  // The same for every body (model order).
+  // Applied loads on every body (model order): (Fx, Fy, moment about its centre
+  // of mass), world frame; also valid for the ground.
   std::vector<Eigen::Vector3d> applied_loads(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const;
 
   double kinetic_energy(const Eigen::VectorXd& qd) const;
