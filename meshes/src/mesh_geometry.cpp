@@ -1,5 +1,6 @@
 #include "kinetofem/meshes/mesh_geometry.hpp"
 
+#include <array>
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
@@ -189,6 +190,22 @@ fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOp
     return volumes.size();
   });
   require(volume_count > 0, "{}: the geometry has no volumes to mesh", context);
+  {
+    // A part thousands of elements across would not fit in memory and would
+    // keep Gmsh busy for hours: most often a wrong length unit (a part drawn
+    // in mm read as m is 1000 times too large). Stop before meshing.
+    std::array<double, 6> box{};
+    session.call(context, "gmsh::model::getBoundingBox", [&] {
+      gmsh::model::getBoundingBox(-1, -1, box[0], box[1], box[2], box[3], box[4], box[5]);
+    });
+    const double span = std::sqrt((box[3] - box[0]) * (box[3] - box[0]) + (box[4] - box[1]) * (box[4] - box[1]) +
+                                  (box[5] - box[2]) * (box[5] - box[2])) * job.model_unit_m;
+    constexpr double kMaxElementsAcross = 2000.0;
+    require(span <= kMaxElementsAcross * options.element_size_m,
+            "{}: the part spans {:.4g} m, {:.0f} elements of {:.4g} m across (at most {:.0f}): is its length unit "
+            "right, or the element size?",
+            context, span, span / options.element_size_m, options.element_size_m, kMaxElementsAcross);
+  }
 
   if (job.before_meshing) job.before_meshing(session, context);
 

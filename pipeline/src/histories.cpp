@@ -99,6 +99,7 @@ Eigen::Vector2d point_in_world(const mech::MultibodyModel& model, const mech::Fr
 
 void write_mechanism_histories(post::ResultsWriter& writer, const mech::MultibodyModel& model,
                                const mech::Results& results, const std::vector<TrackedPoint>& tracked) {
+  require(!results.frames.empty(), "no output frames to write as histories");
   std::vector<double> times;
   for (const auto& f : results.frames) times.push_back(f.t);
   writer.set_mechanism_time(times);

@@ -34,6 +34,12 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     check_motion_before_meshing(c.model, c.times, bodies_with_parts(c.parts));
     return 0;
   });
+  in_stage(c, "a tracked point does not exist", [&] {  // before the FE work, not after it
+    const mech::Frame at_rest{.bodies = std::vector<mech::BodyFrame>(c.model.bodies.size(),
+                                                                      mech::BodyFrame{.q = Eigen::Vector3d::Zero()})};
+    for (const auto& p : c.tracked_points) point_in_world(c.model, at_rest, p);
+    return 0;
+  });
 
   Stopwatch clock;
   const std::vector<Part> parts =

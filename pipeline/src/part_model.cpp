@@ -139,9 +139,9 @@ void require_face_set(const Part& part, const std::string& face_set, const std::
   const fem::Mesh& mesh = part.model.mesh;
   if (mesh.face_sets.contains(face_set)) return;
   if (mesh.element_sets.contains(face_set) || mesh.node_sets.contains(face_set))
-    fail("{}: {} acts through '{}', which is not a surface of the part (it is a volume, curve or point group); "
-         "surface sets: {}",
-         part.spec.label, user, face_set, sets_of(mesh));
+    fail("{}: {} acts through '{}', which is not a surface of the part (it is a {} group); surface sets: {}",
+         part.spec.label, user, face_set, mesh.element_sets.contains(face_set) ? "volume" : "curve or point",
+         sets_of(mesh));
   fail("{}: {} acts through face set '{}', which the part does not have (it has: {})", part.spec.label, user, face_set,
        sets_of(mesh));
 }
@@ -183,6 +183,19 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
     if (joint->type == mech::JointType::Chain && joint->body_i == a.body) continue;  // the hinge end
     points.push_back({joint->name, attachment.face_set, point_on(body, point)});
   }
+  // Every other point a load acts at counts for the size check (a part with
+  // one pivot and a payload, like the SPEC §1 arm, still has a span).
+  std::vector<JointPoint> load_points = points;
+  for (const auto& m : a.point_masses)
+    for (const auto& pm : body.point_masses)
+      if (pm.name == m.point_mass) load_points.push_back({"point mass '" + pm.name + "'", m.face_set, pm.position_body});
+  for (const auto& f : a.point_forces)
+    for (const auto& pf : model.point_forces)
+      if (pf.name == f.point_force) load_points.push_back({"point force '" + pf.name + "'", f.face_set, point_on(body, pf.point)});
+  for (const auto& sa : a.springs)
+    for (const auto& sp : model.springs)
+      if (sp.name == sa.spring)
+        load_points.push_back({"spring '" + sp.name + "'", sa.face_set, point_on(body, sp.body_i == a.body ? sp.point_i : sp.point_j)});
 
   // Size: the part must be of the order of the distance between its joints.
   const fem::Mesh& mesh = part.model.mesh;
@@ -190,13 +203,13 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
   const double extent = (hi - lo).head<2>().norm();
   double span = 0.0;
   std::string from, to;
-  for (const auto& p : points)
-    for (const auto& q : points)
+  for (const auto& p : load_points)
+    for (const auto& q : load_points)
       if ((p.at - q.at).norm() > span) span = (p.at - q.at).norm(), from = p.joint, to = q.joint;
   if (span > 0.0)
     require(extent > 0.5 * span && extent < 20.0 * span,
-            "{}: the part spans {:.4g} mm in the plane but its joints '{}' and '{}' are {:.4g} mm apart: is its length "
-            "unit right? (expected a part of about {:.4g} mm or more)",
+            "{}: the part spans {:.4g} mm in the plane but its load points '{}' and '{}' are {:.4g} mm apart: is its "
+            "length unit right? (expected a part of about {:.4g} mm or more)",
             part.spec.label, extent / kMm, from, to, span / kMm, span / kMm);
 
   // Placement: each joint point must lie in its bore (the face set's circle).

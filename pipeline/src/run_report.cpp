@@ -71,15 +71,17 @@ PartExtremes part_extremes(const std::vector<PartSummary>& parts) {
 }
 
 std::string format_part_table(const std::vector<PartSummary>& parts) {
-  std::string out = fmt::format("  {:<8} {:>9} {:>14} {:>10} {:>14} {:>10} {:>12} {:>12}\n", "part", "DoFs",
+  std::size_t width = 8;  // the longest part name
+  for (const auto& p : parts) width = std::max(width, p.body.size());
+  std::string out = fmt::format("  {:<{}} {:>9} {:>14} {:>10} {:>14} {:>10} {:>12} {:>12}\n", "part", width, "DoFs",
                                 "max vM [MPa]", "at t [s]", "max |u| [mm]", "at t [s]", "static vM", "static |u|");
   for (const auto& p : parts)
-    out += fmt::format("  {:<8} {:>9} {:>14.3f} {:>10.4f} {:>14.5f} {:>10.4f} {:>12} {:>12}\n", p.body, p.dofs,
+    out += fmt::format("  {:<{}} {:>9} {:>14.3f} {:>10.4f} {:>14.5f} {:>10.4f} {:>12} {:>12}\n", p.body, width, p.dofs,
                        p.peak_von_mises_pa / kMpa, p.peak_von_mises_time_s, p.peak_displacement_m / kMm,
                        p.peak_displacement_time_s,
                        p.has_static_study ? fmt::format("{:.3f}", p.static_von_mises_pa / kMpa) : "-",
                        p.has_static_study ? fmt::format("{:.5f}", p.static_displacement_m / kMm) : "-");
-  for (const auto& p : parts) out += fmt::format("  {:<8} solver: {}\n", p.body, p.solver_summary);
+  for (const auto& p : parts) out += fmt::format("  {:<{}} solver: {}\n", p.body, width, p.solver_summary);
   return out;
 }
 

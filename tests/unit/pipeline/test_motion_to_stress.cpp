@@ -161,7 +161,7 @@ TEST(RunMotionToStress, PartErrorIsPrefixedByTheCase) {
   c.static_pose.reset();
   const std::string message = error_of([&] { run_motion_to_stress(c, Log::quiet()); });
   EXPECT_TRUE(starts_with(message, "case.toml: ")) << message;
-  EXPECT_TRUE(contains(message, "part 'beam' (beam.msh): the part spans 0.3027 mm in the plane but its joints 'pivot' "
+  EXPECT_TRUE(contains(message, "part 'beam' (beam.msh): the part spans 0.3027 mm in the plane but its load points 'pivot' "
                                 "and 'J2' are 300 mm apart: is its length unit right?"))
       << message;
   EXPECT_EQ(files_in(c.results_file.parent_path()), std::vector<std::string>{"beam.msh"});  // no results, no .tmp

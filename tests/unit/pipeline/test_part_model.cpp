@@ -229,7 +229,7 @@ TEST(CheckPartAgainstModel, PartInTheWrongLengthUnitShowsAsASizeMismatch) {
     Part part = test::beam_part("beam", test::double_link_attachments());
     part.model.mesh.nodes *= scale;
     const std::string message = error_of([&] { check_part_against_model(part, test::double_link()); });
-    EXPECT_TRUE(contains(message, "its joints 'J1' and 'J2' are 300 mm apart: is its length unit right?"))
+    EXPECT_TRUE(contains(message, "its load points 'J1' and 'J2' are 300 mm apart: is its length unit right?"))
         << scale << ": " << message;
   }
 }
