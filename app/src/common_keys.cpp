@@ -113,6 +113,30 @@ loads::LinkStressOptions read_stress_options(const CaseFile& c) {
   return options;
 }
 
+std::vector<KeySpec> lever_chain_dimension_keys(const std::string& prefix) {
+  using Type = KeySpec::Type;
+  using E = mech::LeverChainExample;
+  return {
+      {.path = prefix + "a_mm", .type = Type::Number, .unit = "mm", .to_si = 1e-3, .default_number = E::a_m / 1e-3, .min = 0,
+       .min_exclusive = true, .doc = "lever length a = |A0 A| (SPEC §1; the four-bar's crank)"},
+      {.path = prefix + "c_mm", .type = Type::Number, .unit = "mm", .to_si = 1e-3, .default_number = E::c_m / 1e-3, .min = 0,
+       .min_exclusive = true, .doc = "c = |A C| along link 2"},
+      {.path = prefix + "h_mm", .type = Type::Number, .unit = "mm", .to_si = 1e-3, .default_number = E::h_m / 1e-3, .min = 0,
+       .doc = "h: offset of the gripper point H from C"},
+      {.path = prefix + "r_mm", .type = Type::Number, .unit = "mm", .to_si = 1e-3, .default_number = E::r_m / 1e-3, .min = 0,
+       .min_exclusive = true, .doc = "roller radius r (lever-chain) = coupler length AB (four-bar)"},
+  };
+}
+
+mech::LeverChainGeometry read_lever_chain_geometry(const CaseFile& c, const std::string& prefix) {
+  try {
+    return mech::make_lever_chain_geometry(c.number(prefix + "a_mm"), c.number(prefix + "c_mm"), c.number(prefix + "h_mm"),
+                                           c.number(prefix + "r_mm"));
+  } catch (const Error& e) {
+    fail("{}: [{}]: {}", c.path().string(), prefix.substr(0, prefix.size() - 1), e.what());
+  }
+}
+
 std::vector<KeySpec> with_common_keys(std::vector<KeySpec> keys) {
   for (auto&& k : material_keys()) keys.push_back(std::move(k));
   for (auto&& k : solver_keys()) keys.push_back(std::move(k));

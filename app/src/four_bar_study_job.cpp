@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
@@ -27,11 +28,8 @@ using units::kMm;
 const std::vector<KeySpec>& four_bar_study_schema() {
   static const std::vector<KeySpec> schema = [] {
     std::vector<KeySpec> s = mechanism_case_keys("four_bar_study");
+    for (auto&& k : lever_chain_dimension_keys("geometry.")) s.push_back(std::move(k));
     s.insert(s.end(), {
-      {.path = "geometry.a_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 500, .min = 0, .min_exclusive = true, .doc = "lever length a (the four-bar's crank)"},
-      {.path = "geometry.c_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 350, .min = 0, .min_exclusive = true, .doc = "c = |A C| along link 2"},
-      {.path = "geometry.h_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 100, .min = 0, .doc = "offset h of H from C"},
-      {.path = "geometry.r_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 75, .min = 0, .min_exclusive = true, .doc = "roller radius r = coupler length AB of the four-bar"},
       {.path = "study.dphi_min_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = -73, .min = -180, .max = 180, .doc = "start of the lever motion"},
       {.path = "study.dphi_max_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 90, .min = -180, .max = 180, .doc = "end of the lever motion"},
       {.path = "study.samples", .type = Type::Integer, .default_number = 1631, .min = 3, .max = 10000000, .doc = "samples (output times) of the motion"},
@@ -49,13 +47,7 @@ MechanismCaseSummary run_four_bar_study(const CaseFile& c, const RunOptions& opt
   Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   const std::string name = mechanism_case_name(c);
   log.info("kinetofem: case '{}' ({}), lever-chain vs four-bar study (SPEC §2)", name, c.path().string());
-  mech::LeverChainGeometry g;
-  try {
-    g = mech::make_lever_chain_geometry(c.number("geometry.a_mm"), c.number("geometry.c_mm"), c.number("geometry.h_mm"),
-                                        c.number("geometry.r_mm"));
-  } catch (const Error& e) {
-    fail("{}: [geometry]: {}", c.path().string(), e.what());
-  }
+  const mech::LeverChainGeometry g = read_lever_chain_geometry(c, "geometry.");
   const double lo = c.number("study.dphi_min_deg"), hi = c.number("study.dphi_max_deg");
   require(lo < hi, "{}: dphi_min_deg must be below dphi_max_deg", c.where("study.dphi_max_deg"));
   const std::size_t n = std::size_t(c.integer("study.samples"));

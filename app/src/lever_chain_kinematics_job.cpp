@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/core/error.hpp"
@@ -29,13 +30,10 @@ using units::kMm;
 const std::vector<KeySpec>& lever_chain_kinematics_schema() {
   static const std::vector<KeySpec> schema = [] {
     std::vector<KeySpec> s = mechanism_case_keys("lever_chain_kinematics");
+    for (auto&& k : lever_chain_dimension_keys("geometry.")) s.push_back(std::move(k));
     s.insert(s.end(), {
       {.path = "geometry.input", .type = Type::String, .default_text = "dimensions", .allowed = {"dimensions", "synthesis"},
        .doc = "dimensions: a, c, h, r given; synthesis: a, c, h from H0, Hf and phi_of (SPEC §1, fig. 2), r given"},
-      {.path = "geometry.a_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 500, .min = 0, .min_exclusive = true, .doc = "lever length a = |A0 A|"},
-      {.path = "geometry.c_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 350, .min = 0, .min_exclusive = true, .doc = "c = |A C| along link 2"},
-      {.path = "geometry.h_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 100, .min = 0, .doc = "offset h of H from C"},
-      {.path = "geometry.r_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 75, .min = 0, .min_exclusive = true, .doc = "roller radius r"},
       {.path = "geometry.h0_mm", .type = Type::Array, .unit = "mm", .doc = "synthesis: design position H0 = [x, y] of H (frame: origin A0, Y along the machine axis)"},
       {.path = "geometry.hf_mm", .type = Type::Array, .unit = "mm", .doc = "synthesis: final position Hf = [x, y] of H"},
       {.path = "geometry.phi_of_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .min = -180, .max = 180, .doc = "synthesis: lever rotation from H0 to Hf"},

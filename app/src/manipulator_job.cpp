@@ -35,10 +35,6 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "case.type", .type = Type::String, .allowed = {"manipulator"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text"},
       {.path = "mechanism.type", .type = Type::String, .allowed = {"lever_chain", "lever"}, .doc = "SPEC §1 lever-chain or SPEC §2 lever (four-bar) manipulator", .required = true},
-      {.path = "mechanism.a_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 500, .min = 0, .min_exclusive = true, .doc = "lever length a = |A0 A| (SPEC §1)"},
-      {.path = "mechanism.c_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 350, .min = 0, .min_exclusive = true, .doc = "c = |A C| along link 2"},
-      {.path = "mechanism.h_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 100, .min = 0, .doc = "h: offset of the gripper point H from C"},
-      {.path = "mechanism.r_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 75, .min = 0, .min_exclusive = true, .doc = "roller radius r (lever-chain) = coupler length AB (lever)"},
       {.path = "mechanism.gravity_m_s2", .type = Type::Vector3, .unit = "m/s^2",
        .default_vector = std::array<double, 3>{0.0, -units::kStandardGravity, 0.0},
        .doc = "gravity in the mechanism frame (x, y in the plane; z must be 0)"},
@@ -60,6 +56,7 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "static_study.dphi_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0, .min = -180, .max = 180,
        .doc = "lever angle of the static pose from the design position"},
     };
+    for (auto&& k : lever_chain_dimension_keys("mechanism.")) s.push_back(std::move(k));
     add_motion_law_keys(s, "motion.", "law",
                         {.default_law = "polynomial345", .default_stroke_deg = 80.0, .default_duration_s = 2.0, .angles_only = true});
     for (auto&& k : part_mesh_keys()) s.push_back(std::move(k));
@@ -76,12 +73,7 @@ namespace {
 mech::ManipulatorDefinition read_definition(const CaseFile& c) {
   mech::ManipulatorDefinition def;
   def.type = c.text_value("mechanism.type") == "lever_chain" ? mech::ManipulatorType::LeverChain : mech::ManipulatorType::Lever;
-  try {
-    def.geometry = mech::make_lever_chain_geometry(c.number("mechanism.a_mm"), c.number("mechanism.c_mm"),
-                                                   c.number("mechanism.h_mm"), c.number("mechanism.r_mm"));
-  } catch (const Error& e) {
-    fail("{}: [mechanism]: {}", c.path().string(), e.what());
-  }
+  def.geometry = read_lever_chain_geometry(c, "mechanism.");
   const Eigen::Vector3d gravity = c.vector3("mechanism.gravity_m_s2");
   require(gravity.z() == 0.0, "{} = [{}, {}, {}]: the z component (along the pins) must be 0 for the planar model",
           c.where("mechanism.gravity_m_s2"), gravity.x(), gravity.y(), gravity.z());

@@ -599,7 +599,7 @@ void write_mechanism_loads_picture(const ResultsFile& results, const std::filesy
   cairo_t* cr = canvas.cr();
   const double t_end = forces.empty() ? torques.front().x.back() : forces.front().x.back();
   title(cr, canvas, fmt::format("{}: joint forces, chain tension and drive torque over the motion", case_name(results, options)),
-        fmt::format("mechanism histories, 0 .. {:.2f} s; |R|: magnitude of the joint reaction on the named link", t_end));
+        fmt::format("mechanism histories, 0 .. {:.2f} s; |R|: magnitude of the force a joint transmits", t_end));
   const double left = 100, legend_w = 250, top = 100, bottom = 70, gap = 90;
   const double width = canvas.width() - left - legend_w - 30;
   const int panels = int(!forces.empty()) + int(!torques.empty());

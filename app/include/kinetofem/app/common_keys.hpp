@@ -6,6 +6,7 @@
 
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/loads/link_stress_history.hpp"
+#include "kinetofem/mechanisms/lever_chain.hpp"
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/solver/material.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
@@ -33,6 +34,12 @@ meshes::MeshOptions read_part_mesh_options(const CaseFile& case_file, const std:
 // solver.block_size: right-hand sides per block solve over the motion.
 std::vector<KeySpec> motion_solver_keys();
 loads::LinkStressOptions read_stress_options(const CaseFile& case_file);
+
+// The SPEC §1 dimensions under `prefix` ("mechanism." or "geometry."): a_mm,
+// c_mm, h_mm, r_mm, defaults the published example (mech::LeverChainExample).
+std::vector<KeySpec> lever_chain_dimension_keys(const std::string& prefix);
+// The geometry (1)-(3) of those keys; Error naming the case file if they are impossible.
+mech::LeverChainGeometry read_lever_chain_geometry(const CaseFile& case_file, const std::string& prefix);
 
 // `keys` followed by the material, solver and sweep keys.
 std::vector<KeySpec> with_common_keys(std::vector<KeySpec> keys);

@@ -94,6 +94,13 @@ struct LeverChainGeometry {
 // h >= 0 (finite).
 LeverChainGeometry make_lever_chain_geometry(double a_m, double c_m, double h_m, double r_m);
 
+// The published example of SPEC §1 (a = 500, c = 350, h = 100, r = 75 mm):
+// the default dimensions of every case type built on the lever-chain
+// geometry (manipulator, lever_chain_kinematics, four_bar_study).
+struct LeverChainExample {
+  static constexpr double a_m = 0.500, c_m = 0.350, h_m = 0.100, r_m = 0.075;
+};
+
 // Synthesis of the primary chain (SPEC §1, source fig. 2). Given the design and
 // final positions H0, Hf of H and the lever rotation phi_of between them:
 // Hf1 = R(-phi_of) Hf (Hf seen from lever 1), A = (0, a) is the point of the Y
