@@ -69,6 +69,7 @@ struct FileState {
   std::vector<double> mechanism_time_s;
   bool mechanism_time_set = false;
   std::set<std::string> histories;
+  std::vector<xdmf::History> xdmf_histories;  // in writing order, for the XDMF "mechanism" grid
   bool committed = false;
   // A write that failed half-way leaves the file inconsistent: commit() refuses it.
   std::string broken;
@@ -576,6 +577,7 @@ void ResultsWriter::write_history(const std::string& name, const std::string& un
       h5::Handle dataset = h5::open_dataset(f.io, f.mechanism.get(), name, path);
       h5::write_attribute(f.io, dataset.get(), path, "components", component_names);
     }
+    f.xdmf_histories.push_back({name, path, fem::Index(values.rows()), int(values.cols())});
   });
   f.histories.insert(name);
 }
@@ -602,7 +604,11 @@ void ResultsWriter::commit() {
     f.bodies.reset();
     KF_H5(f.io, "/", H5Fclose, f.file.release());
 
-    const std::string text = xdmf::document(f.final_h5.filename().string(), grids);
+    xdmf::Mechanism mechanism;
+    mechanism.present = f.mechanism_time_set;
+    mechanism.times_s = f.mechanism_time_s;
+    mechanism.histories = f.xdmf_histories;
+    const std::string text = xdmf::document(f.final_h5.filename().string(), grids, mechanism);
     {
       std::ofstream out(f.temporary_xdmf, std::ios::binary | std::ios::trunc);
       require(bool(out), "cannot create '{}'", f.temporary_xdmf.string());

@@ -39,7 +39,9 @@ using IndexMatrix = Eigen::Matrix<fem::Index, Eigen::Dynamic, Eigen::Dynamic, Ei
 
 // Component names for the usual fields (attribute `components` of a dataset).
 inline const std::vector<std::string> kVectorComponents = {"x", "y", "z"};
-// Stress/strain in Voigt order; XDMF's Tensor6 and ParaView use the same order (zx = xz).
+// Stress/strain in Voigt order (xx, yy, zz, xy, yz, zx); the XDMF file writes them as a 6-component
+// Matrix (not Tensor6, which the Xdmf2 and Xdmf3 libraries order differently), shown by ParaView as
+// XX, YY, ZZ, XY, YZ, XZ.
 inline const std::vector<std::string> kVoigtComponents = {"xx", "yy", "zz", "xy", "yz", "zx"};
 inline const std::vector<std::string> kPrincipalComponents = {"1", "2", "3"};
 

@@ -1,0 +1,237 @@
+#pragma once
+// ElasticAssembly — a planar linkage in one pose (one mech::Frame) as ONE
+// linear-elastic structure held by the ground: quasi-static, small
+// displacements, in world axes, measured from the rigid configuration of the
+// pose. What SPEC §3 calls the "total deformation" of the assembly (the
+// bending of every link plus what the joints, the chain and the drive let
+// move), where the per-link analysis (pipeline/part_stress.hpp) gives each
+// link's deformation relative to its own rigid motion. docs/elastic_assembly.md.
+//
+// Model
+//   * Bodies with a pipeline::Part are elastic (mesh in the body frame), the
+//     others rigid; the ground is fixed.
+//   * Interfaces. Each end of a joint on a body, each end of a motion drive
+//     and each tracked point is an interface with 6 components (translation
+//     of a reference point and rotation; force and moment). On an elastic
+//     part it is the distributing (RBE3-like) coupling of a face set
+//     (fem::DistributingCoupling): its motion is G^T u, its load enters as G
+//     [F; M]. Reference point: the joint point in the body frame with z =
+//     the face set's centroid z (drives: the face set's centroid). On a rigid
+//     body it is the body point, moving with the body.
+//   * Revolute joint: the two interfaces move together in the three
+//     translations and the rotations about world x and y (a rigid pin from
+//     one reference point to the other); the rotation about z is free, so the
+//     pin carries no moment about z. To the ground: those five held.
+//     Fixed joint: all six held. Prismatic joints are not modelled (Error).
+//   * Motion drive on an angle (theta_j - theta_i): holds the relative
+//     rotation about z of its interfaces (the part's DriveAttachment face set)
+//     rigidly (default) or through a torsional stiffness k_d (N m/rad).
+//   * Chain (mech::JointType::Chain, hinge on the ground): a tension-only
+//     axial member from the hinge to its tangent point T on the roller
+//     (mech::chain_tangent), k = EA / free length; it acts on the roller's
+//     interface (reference: the roller centre) at T. Its tension in the pose
+//     must be positive (else Error: slack).
+//   * Loads on each part: those of loads::LinkLoads at the frame WITHOUT the
+//     joint reactions and without the efforts of the motion drives (they are
+//     internal here): d'Alembert inertia and weight, point masses, force-drive
+//     efforts, springs, point forces. A rigid body's: the multibody model's
+//     applied loads minus its inertia. Each part's load resultant is checked
+//     against its multibody body's (a load attachment missing from the part,
+//     or mass properties that are not the mesh's, show there).
+//
+// Method (one factorization per part, reused for every pose)
+//   Per part: K_s with a 3-2-1 support (fem::three_two_one_support), the 6m
+//   interface columns G, Z_G = K_s^-1 G and the flexibility F = G^T Z_G (body
+//   axes, once). Per pose: f_loads, Z_f = K_s^-1 f_loads (one block solve for
+//   all poses), d = G^T Z_f. Interface displacements u = F lambda + d + R alpha
+//   (R: the interfaces' rigid-body modes; alpha: the part's rigid motion
+//   relative to its support), equilibrium R^T lambda + resultant(f_loads) = 0.
+//   Rotated into world axes, with the joints' compatibility C u = 0, lambda =
+//   C^T mu - S u (S: chain and drive springs), they form one small dense
+//   system in (u, lambda, alpha, mu), solved by full-pivoting LU after
+//   scaling. A rank-deficient system is an Error naming the joint (or drive)
+//   whose rotation nothing holds, or the joints of a statically
+//   indeterminate loop of rigid bodies. Fields: u = Z_G lambda + Z_f +
+//   rigid(alpha), rotated to world axes.
+//
+// SI units: m, rad, N, N m, Pa.
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/mechanisms/multibody/model.hpp"
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/solver/assembly.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
+
+namespace kinetofem::structure {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+inline constexpr double kRigid = std::numeric_limits<double>::infinity();
+
+// The axial stiffness of a chain of the model (every chain needs one).
+struct ChainMember {
+  std::string chain;               // joint name (mech::JointType::Chain)
+  double axial_stiffness_n = 0.0;  // EA, N (> 0); k = EA / free length in the pose
+};
+
+// How a motion drive holds its angle (drives not listed: rigidly).
+struct DriveHold {
+  std::string drive;                               // motion drive name
+  double torsional_stiffness_nm_per_rad = kRigid;  // >= 0; kRigid: a constraint
+};
+
+// A point whose displacement is reported (e.g. the gripper point H).
+struct TrackedPoint {
+  std::string name;
+  std::string body;
+  std::string point = "origin";  // named point of the body (body frame)
+  std::string face_set;          // elastic part: the face set whose coupling carries the point
+};
+
+struct AssemblyOptions {
+  std::vector<ChainMember> chains;
+  std::vector<DriveHold> drives;
+  std::vector<TrackedPoint> points;
+  fem::StaticSolverOptions solver;
+  // |resultant of a part's loads - its multibody body's applied minus inertia
+  // loads| relative to their size; above: Error. Infinity: no check.
+  double load_check_tolerance = 1e-6;
+  // Pivots below this fraction of the largest (scaled system) count as zero.
+  double rank_tolerance = 1e-10;
+  bool recover_stress = true;  // von Mises field of every part
+};
+
+// Rigid motion alpha of a moving body (world axes): translation of its frame
+// origin and rotation. For an elastic part, relative to its 3-2-1 support.
+struct BodyMotion {
+  std::string body;
+  bool elastic = false;
+  Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation_rad = Eigen::Vector3d::Zero();
+};
+
+struct PartField {
+  std::string body;
+  fem::DisplacementField displacement_m;  // N x 3, world axes, from the rigid configuration
+  Eigen::VectorXd von_mises_pa;           // N (empty unless recover_stress)
+  double max_displacement_m = 0.0;
+  fem::Index max_displacement_node = 0;
+};
+
+// What a joint applies on each of its bodies (world axes; moments about the
+// body's reference point, point_*_m). Ground side: minus the other side's.
+struct JointLoad {
+  std::string joint;
+  mech::JointType type = mech::JointType::Revolute;
+  std::string body_i, body_j;
+  Eigen::Vector3d point_i_m = Eigen::Vector3d::Zero(), point_j_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force_on_i_n = Eigen::Vector3d::Zero(), moment_on_i_nm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force_on_j_n = Eigen::Vector3d::Zero(), moment_on_j_nm = Eigen::Vector3d::Zero();
+};
+
+struct ChainResult {
+  std::string chain;
+  double axial_stiffness_n = 0.0, free_length_m = 0.0, stiffness_n_per_m = 0.0;
+  double elongation_m = 0.0, tension_n = 0.0;
+  Eigen::Vector3d tangent_point_m = Eigen::Vector3d::Zero();  // world
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();        // unit, tangent point -> hinge
+};
+
+struct DriveResult {
+  std::string drive;
+  bool rigid = true;
+  double stiffness_nm_per_rad = kRigid;
+  double moment_on_j_nm = 0.0;  // about z, on body_j (the drive's effort)
+  double twist_rad = 0.0;       // relative rotation theta_j - theta_i of its interfaces
+};
+
+struct PointResult {
+  std::string name, body;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // world, rigid configuration
+  Eigen::Vector3d displacement_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation_rad = Eigen::Vector3d::Zero();
+};
+
+struct PoseSolution {
+  double t = 0.0;
+  std::vector<BodyMotion> bodies;  // moving bodies, model order
+  std::vector<PartField> parts;    // elastic parts, in the order given
+  std::vector<JointLoad> joints;   // model joint order
+  std::vector<ChainResult> chains;
+  std::vector<DriveResult> drives;  // motion drives, model order
+  std::vector<PointResult> points;  // options.points order
+  int unknowns = 0, rank = 0;
+  double relative_residual = 0.0;   // of the dense system (scaled)
+  double max_displacement_m = 0.0;  // over the parts' nodes
+  std::string max_displacement_body;
+
+  // Throw Error when the name is absent.
+  const PartField& part(const std::string& body) const;
+  const JointLoad& joint(const std::string& name) const;
+  const PointResult& point(const std::string& name) const;
+  const ChainResult& chain(const std::string& name) const;
+  const DriveResult& drive(const std::string& name) const;
+  const BodyMotion& body(const std::string& name) const;
+};
+
+struct InterfaceInfo {
+  std::string body;
+  std::string kind;                                            // "joint", "drive" or "point"
+  std::string name;                                            // joint, drive or tracked point name
+  std::string face_set;                                        // elastic part; empty on a rigid body
+  Eigen::Vector3d reference_body_m = Eigen::Vector3d::Zero();  // body frame
+  bool elastic = false;
+};
+
+struct AssemblyStatistics {
+  int elastic_parts = 0, rigid_bodies = 0, interfaces = 0, unknowns = 0;
+  long part_dofs = 0;          // sum over the parts
+  long interface_columns = 0;  // sum of 6 m over the parts (solved once)
+  double setup_seconds = 0.0;  // assembly, factorization and interface solves, all parts
+  double factorize_seconds = 0.0;
+  long poses = 0;
+  // Sums over every pose solved so far.
+  double loads_seconds = 0.0, load_solve_seconds = 0.0, system_seconds = 0.0, recovery_seconds = 0.0;
+  double pose_seconds() const {
+    return poses > 0 ? (loads_seconds + load_solve_seconds + system_seconds + recovery_seconds) / double(poses) : 0.0;
+  }
+};
+
+class ElasticAssembly {
+ public:
+  // Throws Error naming the part, joint or drive for a body without a model
+  // body, a part on the ground, two parts of one body, a joint or motion
+  // drive acting on a part that names no face set for it, a prismatic joint,
+  // a chain without its EA or hinged off the ground, a displacement drive,
+  // an option naming an unknown chain, drive, body or point.
+  ElasticAssembly(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
+                  AssemblyOptions options = {}, const Log& log = Log::quiet());
+  ~ElasticAssembly();
+  ElasticAssembly(ElasticAssembly&&) noexcept;
+  ElasticAssembly& operator=(ElasticAssembly&&) noexcept;
+
+  // One pose / several poses (the parts' load solves in one block). The frames
+  // come from the model given (its bodies, drives, solver coordinates).
+  // Throws Error naming the time for a mechanism (rank-deficient system), a
+  // slack chain, or a part's loads that disagree with its multibody body.
+  PoseSolution solve(const mech::Frame& frame);
+  std::vector<PoseSolution> solve(const std::vector<mech::Frame>& frames);
+
+  std::vector<InterfaceInfo> interfaces() const;
+  // Flexibility G^T K_s^-1 G of the elastic part of `body` over its
+  // interfaces (interfaces() order), body axes; 6m x 6m.
+  Eigen::MatrixXd flexibility(const std::string& body) const;
+  const AssemblyStatistics& statistics() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace kinetofem::structure

@@ -1,0 +1,928 @@
+#include "kinetofem/structure/elastic_assembly.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/loads/link_loads.hpp"
+#include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
+#include "kinetofem/mechanisms/multibody/system.hpp"
+#include "kinetofem/solver/couplings.hpp"
+#include "kinetofem/solver/rigid_body.hpp"
+#include "kinetofem/solver/stress_recovery.hpp"
+
+namespace kinetofem::structure {
+
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+Eigen::Matrix3d skew(const Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Vector3d::UnitZ()).toRotationMatrix(); }
+
+Vector3d lift(const Vector2d& v, double z = 0.0) { return Vector3d(v.x(), v.y(), z); }
+
+double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Motion (translation, rotation) of a point at `arm` from a reference point
+// moving by (t, w): (t + w x arm, w) = transfer(arm) (t, w).
+Matrix6d transfer(const Vector3d& arm) {
+  Matrix6d T = Matrix6d::Identity();
+  T.block<3, 3>(0, 3) = -skew(arm);
+  return T;
+}
+
+Matrix6d rotate6(const Eigen::Matrix3d& R) {
+  Matrix6d Q = Matrix6d::Zero();
+  Q.block<3, 3>(0, 0) = R;
+  Q.block<3, 3>(3, 3) = R;
+  return Q;
+}
+
+// Columns of K_s^-1 B as 3 N vectors.
+Eigen::MatrixXd solve_columns(fem::LinearStaticAnalysis& analysis, const Eigen::MatrixXd& B) {
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  if (B.cols() == 0) return X;
+  const std::vector<fem::DisplacementField> fields = analysis.solve_forces(B);
+  for (Eigen::Index c = 0; c < B.cols(); ++c)
+    X.col(c) = Eigen::Map<const Eigen::VectorXd>(fields[size_t(c)].data(), B.rows());
+  return X;
+}
+
+const char* const kComponent[6] = {"x", "y", "z", "rx", "ry", "rz"};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+const PartField& PoseSolution::part(const std::string& name) const {
+  for (const auto& p : parts)
+    if (p.body == name) return p;
+  fail("elastic assembly: no part of body '{}'", name);
+}
+const JointLoad& PoseSolution::joint(const std::string& name) const {
+  for (const auto& j : joints)
+    if (j.joint == name) return j;
+  fail("elastic assembly: no joint '{}'", name);
+}
+const PointResult& PoseSolution::point(const std::string& name) const {
+  for (const auto& p : points)
+    if (p.name == name) return p;
+  fail("elastic assembly: no tracked point '{}'", name);
+}
+const ChainResult& PoseSolution::chain(const std::string& name) const {
+  for (const auto& c : chains)
+    if (c.chain == name) return c;
+  fail("elastic assembly: no chain '{}'", name);
+}
+const DriveResult& PoseSolution::drive(const std::string& name) const {
+  for (const auto& d : drives)
+    if (d.drive == name) return d;
+  fail("elastic assembly: no motion drive '{}'", name);
+}
+const BodyMotion& PoseSolution::body(const std::string& name) const {
+  for (const auto& b : bodies)
+    if (b.body == name) return b;
+  fail("elastic assembly: no moving body '{}'", name);
+}
+
+// ---------------------------------------------------------------------------
+
+struct ElasticAssembly::Impl {
+  enum class Kind { Joint, Drive, Point };
+  struct Interface {
+    int body = -1, part = -1, local = -1;
+    Kind kind = Kind::Joint;
+    std::string name, face_set;
+    Vector3d reference = Vector3d::Zero();  // body frame
+  };
+  struct PartData {
+    std::string body, label;
+    int body_index = -1;
+    fem::FeModel supported;
+    loads::LinkDefinition attachments;  // as given (joints, drives and all)
+    std::unique_ptr<fem::LinearStaticAnalysis> analysis;
+    std::unique_ptr<loads::LinkLoads> loads;
+    std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings;  // per local interface
+    std::vector<int> interfaces;                                        // global indices, local order
+    Eigen::MatrixXd G, ZG, F;                                           // 3N x 6m, 3N x 6m, 6m x 6m (body axes)
+  };
+  struct JointData {
+    int joint = -1;
+    mech::JointType type = mech::JointType::Revolute;
+    int body_i = -1, body_j = -1, if_i = -1, if_j = -1;
+    double ea = 0.0, radius = 0.0, sigma = 1.0;  // chain
+    Vector2d hinge = Vector2d::Zero();           // chain: hinge point in the ground's frame
+  };
+  struct DriveData {
+    int drive = -1, body_i = -1, body_j = -1, if_i = -1, if_j = -1;
+    double k = kRigid;
+  };
+  struct PointData {
+    int body = -1, iface = -1;
+  };
+  // The geometry of one pose.
+  struct Pose {
+    std::vector<Eigen::Matrix3d> R;  // per body
+    std::vector<Vector3d> origin;    // per body, world
+    std::vector<Vector3d> P, arm;    // per interface: reference point (world), offset from its body origin (world axes)
+  };
+
+  Log log;
+  AssemblyOptions options;
+  mech::MultibodyModel model;
+  std::unique_ptr<mech::MultibodySystem> system;
+  double length_scale = 1.0;
+  std::vector<std::unique_ptr<PartData>> parts;
+  std::vector<int> part_of_body;  // -1: rigid or ground
+  std::vector<int> moving;        // per body: index among the moving bodies, -1 ground
+  int moving_count = 0;
+  std::vector<Interface> interfaces;
+  std::vector<std::vector<int>> interfaces_of_body;
+  std::vector<JointData> joints;
+  std::vector<DriveData> drives;
+  std::vector<PointData> points;
+  AssemblyStatistics stats;
+
+  Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l);
+
+  int body_index(const std::string& name, const std::string& who) const {
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == name) return int(b);
+    fail("elastic assembly: {} names body '{}', which the mechanism '{}' lacks", who, name, model.name);
+  }
+  Vector2d named_point(int body, const std::string& point, const std::string& who) const {
+    if (point == "origin") return Vector2d::Zero();
+    const auto& pts = model.bodies[size_t(body)].points;
+    const auto it = pts.find(point);
+    require(it != pts.end(), "elastic assembly: {} names point '{}', which body '{}' lacks", who, point,
+            model.bodies[size_t(body)].name);
+    return it->second;
+  }
+  const std::string& body_name(int b) const { return model.bodies[size_t(b)].name; }
+  bool ground(int b) const { return moving[size_t(b)] < 0; }
+
+  // A new interface of `body`: on an elastic part the coupling of
+  // `face_set`, reference (point, centroid z) or the centroid itself.
+  int add_interface(int body, Kind kind, const std::string& name, const std::string& face_set, const Vector2d& point,
+                    bool centroid_reference) {
+    Interface iface;
+    iface.body = body;
+    iface.kind = kind;
+    iface.name = name;
+    iface.reference = lift(point);
+    const int p = part_of_body[size_t(body)];
+    if (p >= 0) {
+      PartData& part = *parts[size_t(p)];
+      iface.part = p;
+      iface.local = int(part.couplings.size());
+      iface.face_set = face_set;
+      try {
+        part.couplings.push_back(std::make_unique<fem::DistributingCoupling>(part.supported.mesh, face_set));
+      } catch (const Error& e) {
+        fail("{}: the {} '{}': {}", part.label,
+             kind == Kind::Joint   ? "joint"
+             : kind == Kind::Drive ? "drive"
+                                   : "point",
+             name, e.what());
+      }
+      const Vector3d c = part.couplings.back()->centroid();
+      iface.reference = centroid_reference ? c : lift(point, c.z());
+      part.interfaces.push_back(int(interfaces.size()));
+    }
+    interfaces_of_body[size_t(body)].push_back(int(interfaces.size()));
+    interfaces.push_back(iface);
+    return int(interfaces.size()) - 1;
+  }
+
+  // Resultant (world axes, moment about the body origin) of the applied
+  // minus inertia loads of the multibody body, and its size.
+  Vector6d multibody_resultant(const mech::Frame& frame, const std::vector<Vector3d>& applied, int b,
+                               double& scale) const {
+    const mech::EffectiveBody& eff = system->effective(b);
+    const mech::BodyFrame& bf = frame.bodies[size_t(b)];
+    const Vector2d inertia = eff.mass_kg * bf.com_acceleration;
+    const Vector2d F = applied[size_t(b)].head<2>() - inertia;
+    const double inertia_moment = eff.inertia_kgm2 * bf.q_ddot.z();
+    const Vector2d arm = bf.com - bf.q.head<2>();
+    const double M = applied[size_t(b)].z() - inertia_moment + cross2(arm, F);
+    const double force_size = applied[size_t(b)].head<2>().norm() + inertia.norm();
+    scale =
+        std::max(force_size, (std::abs(applied[size_t(b)].z()) + std::abs(inertia_moment) + arm.norm() * force_size) /
+                                 length_scale);
+    Vector6d r = Vector6d::Zero();
+    r.head<2>() = F;
+    r(5) = M;
+    return r;
+  }
+
+  Pose pose_of(const mech::Frame& frame) const {
+    Pose pose;
+    for (size_t b = 0; b < model.bodies.size(); ++b) {
+      const Vector3d q = frame.bodies[b].q;
+      pose.R.push_back(rot_z(q.z()));
+      pose.origin.push_back(lift(q.head<2>()));
+    }
+    for (const Interface& i : interfaces) {
+      pose.arm.push_back(pose.R[size_t(i.body)] * i.reference);
+      pose.P.push_back(pose.origin[size_t(i.body)] + pose.arm.back());
+    }
+    return pose;
+  }
+
+  void check_frame(const mech::Frame& frame) const {
+    require(frame.bodies.size() == model.bodies.size(),
+            "elastic assembly at t = {:.6g} s: the frame has {} bodies, the mechanism '{}' {}", frame.t,
+            frame.bodies.size(), model.name, model.bodies.size());
+    require(frame.q.size() == system->n_coordinates() && frame.q_dot.size() == system->n_coordinates(),
+            "elastic assembly at t = {:.6g} s: the frame has no solver coordinates of the mechanism '{}' (a frame of "
+            "another model, or built by hand)",
+            frame.t, model.name);
+  }
+
+  PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& load_displacement,
+                          const std::vector<Vector6d>& resultant_world);
+  [[noreturn]] void explain_rank_deficiency(const mech::Frame& frame, const Pose& pose, const Eigen::MatrixXd& kernel,
+                                            const Eigen::VectorXd& unscale, int rank, int n,
+                                            const std::vector<std::string>& row_owner) const;
+};
+
+ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o,
+                            const Log& l)
+    : log(l), options(std::move(o)), model(m) {
+  Stopwatch clock;
+  system = std::make_unique<mech::MultibodySystem>(model);
+  length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
+  const size_t nb = model.bodies.size();
+  part_of_body.assign(nb, -1);
+  moving.assign(nb, -1);
+  interfaces_of_body.assign(nb, {});
+  for (size_t b = 0; b < nb; ++b)
+    if (!model.bodies[b].fixed) moving[b] = moving_count++;
+
+  // Parts: the 3-2-1-supported stiffness, factorized once; the loads without
+  // the joints (and the motion drives, held by the structure).
+  for (const pipeline::Part& part : given) {
+    auto data = std::make_unique<PartData>();
+    data->body = part.body();
+    data->label = part.spec.label.empty() ? fmt::format("part '{}'", part.body()) : part.spec.label;
+    data->body_index = body_index(part.body(), data->label);
+    require(!model.bodies[size_t(data->body_index)].fixed,
+            "{}: body '{}' is the ground, which is rigid and fixed here: give the part to a moving body", data->label,
+            data->body);
+    require(part_of_body[size_t(data->body_index)] < 0, "{}: body '{}' has two parts", data->label, data->body);
+    part_of_body[size_t(data->body_index)] = int(parts.size());
+    data->supported = part.model;
+    data->attachments = part.spec.attachments;
+    data->attachments.body = part.body();
+    std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
+    for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
+    data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
+    for (const auto& a : data->attachments.joints) {
+      const auto it = std::find_if(model.joints.begin(), model.joints.end(),
+                                   [&](const mech::Joint& j) { return j.name == a.joint; });
+      require(it != model.joints.end(), "{}: the mechanism has no joint '{}'", data->label, a.joint);
+      require(it->body_i == data->body || it->body_j == data->body,
+              "{}: joint '{}' does not act on body '{}' (it joins '{}' and '{}')", data->label, a.joint, data->body,
+              it->body_i, it->body_j);
+    }
+    loads::LinkDefinition own = data->attachments;
+    own.model = &data->supported;
+    own.joints.clear();
+    std::erase_if(own.drives, [&](const loads::DriveAttachment& d) {
+      return std::any_of(model.motion_drives.begin(), model.motion_drives.end(),
+                         [&](const mech::MotionDrive& md) { return md.name == d.drive; });
+    });
+    // No equilibrium check in loads_at: without the joint reactions the loads
+    // are not self-equilibrated; the resultant is checked against the
+    // multibody body instead (solve).
+    data->loads = std::make_unique<loads::LinkLoads>(own, model, std::numeric_limits<double>::infinity());
+    parts.push_back(std::move(data));
+  }
+
+  auto face_set_of_joint = [&](int body, const std::string& joint) -> std::string {
+    const int p = part_of_body[size_t(body)];
+    if (p < 0) return {};
+    for (const auto& a : parts[size_t(p)]->attachments.joints)
+      if (a.joint == joint) return a.face_set;
+    fail("{}: joint '{}' acts on body '{}' but the part names no face set for it (LinkDefinition::joints)",
+         parts[size_t(p)]->label, joint, body_name(body));
+  };
+
+  for (const auto& c : options.chains) {
+    const auto it = std::find_if(model.joints.begin(), model.joints.end(), [&](const mech::Joint& j) {
+      return j.name == c.chain && j.type == mech::JointType::Chain;
+    });
+    require(it != model.joints.end(), "elastic assembly: options name chain '{}', which the mechanism '{}' lacks",
+            c.chain, model.name);
+  }
+  for (const auto& d : options.drives) {
+    const auto it = std::find_if(model.motion_drives.begin(), model.motion_drives.end(),
+                                 [&](const mech::MotionDrive& md) { return md.name == d.drive; });
+    require(it != model.motion_drives.end(),
+            "elastic assembly: options name motion drive '{}', which the mechanism '{}' lacks", d.drive, model.name);
+    require(d.torsional_stiffness_nm_per_rad >= 0 && !std::isnan(d.torsional_stiffness_nm_per_rad),
+            "elastic assembly: drive '{}': torsional stiffness {} N m/rad must be >= 0 (kRigid: held rigidly)", d.drive,
+            d.torsional_stiffness_nm_per_rad);
+  }
+
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const mech::Joint& joint = model.joints[j];
+    JointData jd;
+    jd.joint = int(j);
+    jd.type = joint.type;
+    const std::string who = fmt::format("joint '{}'", joint.name);
+    jd.body_i = body_index(joint.body_i, who);
+    jd.body_j = body_index(joint.body_j, who);
+    require(joint.type != mech::JointType::Prismatic,
+            "elastic assembly: joint '{}' is prismatic, which the elastic assembly does not model", joint.name);
+    if (joint.type == mech::JointType::Chain) {
+      require(
+          ground(jd.body_i),
+          "elastic assembly: chain '{}' is hinged to body '{}'; the elastic assembly needs the hinge (body_i) on the "
+          "ground",
+          joint.name, joint.body_i);
+      require(!ground(jd.body_j), "elastic assembly: chain '{}' wraps a roller on the ground", joint.name);
+      const auto it = std::find_if(options.chains.begin(), options.chains.end(),
+                                   [&](const ChainMember& c) { return c.chain == joint.name; });
+      require(it != options.chains.end(),
+              "elastic assembly: chain '{}' has no axial stiffness (AssemblyOptions::chains: EA in N)", joint.name);
+      require(it->axial_stiffness_n > 0 && std::isfinite(it->axial_stiffness_n),
+              "elastic assembly: chain '{}': axial stiffness EA = {} N must be positive and finite", joint.name,
+              it->axial_stiffness_n);
+      jd.ea = it->axial_stiffness_n;
+      jd.radius = joint.radius_m;
+      jd.sigma = joint.wrap_ccw ? 1.0 : -1.0;
+      jd.hinge = named_point(jd.body_i, joint.point_i, who);
+      jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
+                              named_point(jd.body_j, joint.point_j, who), false);
+    } else {
+      if (!ground(jd.body_i))
+        jd.if_i = add_interface(jd.body_i, Kind::Joint, joint.name, face_set_of_joint(jd.body_i, joint.name),
+                                named_point(jd.body_i, joint.point_i, who), false);
+      if (!ground(jd.body_j))
+        jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
+                                named_point(jd.body_j, joint.point_j, who), false);
+    }
+    joints.push_back(jd);
+  }
+
+  for (size_t d = 0; d < model.motion_drives.size(); ++d) {
+    const mech::MotionDrive& drive = model.motion_drives[d];
+    require(drive.coordinate.type == mech::CoordinateType::Angle,
+            "elastic assembly: motion drive '{}' drives a displacement; only angle drives are modelled", drive.name);
+    DriveData dd;
+    dd.drive = int(d);
+    const std::string who = fmt::format("drive '{}'", drive.name);
+    dd.body_i = body_index(drive.coordinate.body_i, who);
+    dd.body_j = body_index(drive.coordinate.body_j, who);
+    for (const auto& h : options.drives)
+      if (h.drive == drive.name) dd.k = h.torsional_stiffness_nm_per_rad;
+    auto side = [&](int body) {
+      if (ground(body)) return -1;
+      std::string face_set;
+      const int p = part_of_body[size_t(body)];
+      if (p >= 0) {
+        for (const auto& a : parts[size_t(p)]->attachments.drives)
+          if (a.drive == drive.name) face_set = a.face_set;
+        require(!face_set.empty(),
+                "{}: motion drive '{}' acts on body '{}' but the part names no face set for it "
+                "(LinkDefinition::drives)",
+                parts[size_t(p)]->label, drive.name, body_name(body));
+      }
+      return add_interface(body, Kind::Drive, drive.name, face_set, Vector2d::Zero(), true);
+    };
+    dd.if_i = side(dd.body_i);
+    dd.if_j = side(dd.body_j);
+    drives.push_back(dd);
+  }
+
+  for (const TrackedPoint& tp : options.points) {
+    PointData pd;
+    const std::string who = fmt::format("tracked point '{}'", tp.name);
+    pd.body = body_index(tp.body, who);
+    require(!ground(pd.body), "elastic assembly: tracked point '{}' is on the ground, which does not move", tp.name);
+    const int p = part_of_body[size_t(pd.body)];
+    require(p < 0 || !tp.face_set.empty(), "elastic assembly: tracked point '{}' on part '{}' needs a face set",
+            tp.name, tp.body);
+    pd.iface = add_interface(pd.body, Kind::Point, tp.name, tp.face_set, named_point(pd.body, tp.point, who), false);
+    points.push_back(pd);
+  }
+
+  // Per part: factorization, interface columns, Z_G, flexibility.
+  for (auto& part : parts) {
+    fem::FeModel& fe = part->supported;
+    const fem::Index dofs = 3 * fe.mesh.node_count();
+    log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part->body, fe.mesh.node_count(),
+             part->interfaces.size());
+    part->analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
+    const Eigen::Index m = Eigen::Index(part->interfaces.size());
+    part->G = Eigen::MatrixXd::Zero(dofs, 6 * m);
+    for (Eigen::Index l = 0; l < m; ++l) {
+      const Vector3d& X = interfaces[size_t(part->interfaces[size_t(l)])].reference;
+      for (int c = 0; c < 3; ++c) {
+        part->couplings[size_t(l)]->add(Vector3d::Unit(c), Vector3d::Zero(), X, part->G.col(6 * l + c));
+        part->couplings[size_t(l)]->add(Vector3d::Zero(), Vector3d::Unit(c), X, part->G.col(6 * l + 3 + c));
+      }
+    }
+    part->ZG = solve_columns(*part->analysis, part->G);
+    part->F = part->G.transpose() * part->ZG;
+    part->F = 0.5 * (part->F + part->F.transpose()).eval();
+    stats.part_dofs += long(dofs);
+    stats.interface_columns += long(6 * m);
+    stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+  }
+  stats.elastic_parts = int(parts.size());
+  stats.rigid_bodies = moving_count - int(parts.size());
+  stats.interfaces = int(interfaces.size());
+  stats.setup_seconds = clock.seconds();
+}
+
+// ---------------------------------------------------------------------------
+
+PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
+                                               const std::vector<Eigen::VectorXd>& load_displacement,
+                                               const std::vector<Vector6d>& resultant_world) {
+  Stopwatch clock;
+  const Pose pose = pose_of(frame);
+  const int M = int(interfaces.size()), B = moving_count;
+  const double Lr = length_scale;
+
+  // Springs S (chains, compliant drives) and constraint rows C (6M columns).
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(6 * M, 6 * M);
+  std::vector<Eigen::RowVectorXd> rows;
+  std::vector<bool> row_rotation;
+  std::vector<std::string> row_owner;
+  auto add_row = [&](const Eigen::RowVectorXd& r, bool rotation, const std::string& owner) {
+    rows.push_back(r);
+    row_rotation.push_back(rotation);
+    row_owner.push_back(owner);
+  };
+  struct ChainPose {
+    double k = 0, b = 0;
+    Vector3d T, n;
+    Eigen::Matrix<double, 1, 6> g;  // elongation = g u_roller
+  };
+  std::vector<ChainPose> chain_pose(joints.size());
+  double max_compliance = 0.0;
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const JointData& jd = joints[j];
+    const mech::Joint& joint = model.joints[size_t(jd.joint)];
+    if (jd.type == mech::JointType::Chain) {
+      const Vector2d hinge =
+          pose.origin[size_t(jd.body_i)].head<2>() + pose.R[size_t(jd.body_i)].topLeftCorner<2, 2>() * jd.hinge;
+      const Vector3d& A = pose.P[size_t(jd.if_j)];
+      const mech::ChainTangent tangent = mech::chain_tangent(hinge, A.head<2>(), jd.radius, jd.sigma);
+      ChainPose& cp = chain_pose[j];
+      cp.b = tangent.free_length_m;
+      require(cp.b > 0 && std::isfinite(cp.b), "elastic assembly at t = {:.6g} s: chain '{}' has no free length",
+              frame.t, joint.name);
+      cp.k = jd.ea / cp.b;
+      cp.T = lift(tangent.tangent_point_m, A.z());
+      cp.n = (lift(hinge, A.z()) - cp.T).normalized();
+      Eigen::Matrix<double, 3, 6> Bm;
+      Bm << Eigen::Matrix3d::Identity(), -skew(cp.T - A);
+      cp.g = -cp.n.transpose() * Bm;  // elongation = n . (u_hinge - u_T), u_hinge = 0
+      S.block<6, 6>(6 * jd.if_j, 6 * jd.if_j) += cp.k * cp.g.transpose() * cp.g;
+      max_compliance = std::max(max_compliance, 1.0 / cp.k);
+      continue;
+    }
+    const int held = jd.type == mech::JointType::Fixed ? 6 : 5;
+    Matrix6d T = Matrix6d::Identity();
+    if (jd.if_i >= 0 && jd.if_j >= 0) T = transfer(pose.P[size_t(jd.if_j)] - pose.P[size_t(jd.if_i)]);
+    for (int c = 0; c < held; ++c) {
+      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(6 * M);
+      if (jd.if_j >= 0) r(6 * jd.if_j + c) += 1.0;
+      if (jd.if_i >= 0) r.segment<6>(6 * jd.if_i) -= T.row(c);
+      add_row(r, c >= 3, fmt::format("joint '{}' ({})", joint.name, kComponent[c]));
+    }
+  }
+  for (const DriveData& dd : drives) {
+    const std::string& name = model.motion_drives[size_t(dd.drive)].name;
+    Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(6 * M);
+    if (dd.if_j >= 0) g(6 * dd.if_j + 5) += 1.0;
+    if (dd.if_i >= 0) g(6 * dd.if_i + 5) -= 1.0;
+    if (std::isinf(dd.k)) {
+      add_row(g, true, fmt::format("drive '{}'", name));
+    } else {
+      S += dd.k * g.transpose() * g;
+      if (dd.k > 0) max_compliance = std::max(max_compliance, Lr * Lr / dd.k);
+    }
+  }
+  const int nc = int(rows.size());
+  const int ou = 0, ol = 6 * M, oa = 12 * M, om = 12 * M + 6 * B, n = om + nc;
+
+  // Scales: the largest translational flexibility (parts, chains, drives)
+  // and the largest load resultant.
+  for (const auto& part : parts)
+    for (Eigen::Index k = 0; k < part->F.rows(); ++k)
+      if (k % 6 < 3) max_compliance = std::max(max_compliance, part->F(k, k));
+  double P = 0.0;
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    if (!ground(int(b))) {
+      const Vector6d& r = resultant_world[size_t(moving[b])];
+      P = std::max({P, r.head<3>().norm(), r.tail<3>().norm() / Lr});
+    }
+  if (!(P > 0)) P = 1.0;
+  if (!(max_compliance > 0)) max_compliance = Lr / P;
+  const double U = max_compliance * P;
+
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < M; ++k) {
+    const Interface& iface = interfaces[size_t(k)];
+    const int mb = moving[size_t(iface.body)];
+    // (a) u_k - sum_l F_kl lambda_l - R_k alpha = d_k
+    A.block<6, 6>(ou + 6 * k, ou + 6 * k).setIdentity();
+    A.block<6, 6>(ou + 6 * k, oa + 6 * mb) = -transfer(pose.arm[size_t(k)]);
+    if (iface.part >= 0) {
+      const PartData& part = *parts[size_t(iface.part)];
+      const Matrix6d Q = rotate6(pose.R[size_t(iface.body)]);
+      for (size_t l = 0; l < part.interfaces.size(); ++l) {
+        const Matrix6d Fkl = part.F.block<6, 6>(6 * iface.local, 6 * Eigen::Index(l));
+        A.block<6, 6>(ou + 6 * k, ol + 6 * part.interfaces[l]) = -Q * Fkl * Q.transpose();
+      }
+      const Vector6d d = part.G.middleCols<6>(6 * iface.local).transpose() * load_displacement[size_t(iface.part)];
+      rhs.segment<6>(ou + 6 * k) = Q * d;
+    }
+    // (b) lambda_k - (C^T mu)_k + (S u)_k = 0
+    A.block<6, 6>(ol + 6 * k, ol + 6 * k).setIdentity();
+    // (c) sum_k R_k^T lambda_k = -r_b
+    A.block<6, 6>(oa + 6 * mb, ol + 6 * k) = transfer(pose.arm[size_t(k)]).transpose();
+  }
+  A.block(ol, ou, 6 * M, 6 * M) = S;
+  for (int r = 0; r < nc; ++r) {
+    A.block(ol, om + r, 6 * M, 1) = -rows[size_t(r)].transpose();
+    A.block(om + r, ou, 1, 6 * M) = rows[size_t(r)];  // (d) C u = 0
+  }
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    if (!ground(int(b))) rhs.segment<6>(oa + 6 * moving[b]) = -resultant_world[size_t(moving[b])];
+
+  // Scaling: physical units (U displacement, P force, Lr length), then Ruiz
+  // equilibration; full-pivoting LU with a rank decision.
+  Eigen::VectorXd var(n), eq(n);
+  for (int k = 0; k < 6 * M; ++k) {
+    const bool rot = k % 6 >= 3;
+    var(ou + k) = rot ? U / Lr : U;
+    var(ol + k) = rot ? P * Lr : P;
+    eq(ou + k) = rot ? U / Lr : U;
+    eq(ol + k) = rot ? P * Lr : P;
+  }
+  for (int k = 0; k < 6 * B; ++k) {
+    const bool rot = k % 6 >= 3;
+    var(oa + k) = rot ? U / Lr : U;
+    eq(oa + k) = rot ? P * Lr : P;
+  }
+  for (int r = 0; r < nc; ++r) {
+    var(om + r) = row_rotation[size_t(r)] ? P * Lr : P;
+    eq(om + r) = row_rotation[size_t(r)] ? U / Lr : U;
+  }
+  Eigen::MatrixXd As = eq.cwiseInverse().asDiagonal() * A * var.asDiagonal();
+  Eigen::VectorXd Dr = eq.cwiseInverse(), Dc = var;
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::VectorXd rmax = As.cwiseAbs().rowwise().maxCoeff(),
+                          cmax = As.cwiseAbs().colwise().maxCoeff().transpose();
+    double worst = 0.0;
+    Eigen::VectorXd sr(n), sc(n);
+    for (int i = 0; i < n; ++i) {
+      sr(i) = rmax(i) > 0 ? 1.0 / std::sqrt(rmax(i)) : 1.0;
+      sc(i) = cmax(i) > 0 ? 1.0 / std::sqrt(cmax(i)) : 1.0;
+      worst = std::max({worst, std::abs(1.0 - rmax(i)), std::abs(1.0 - cmax(i))});
+    }
+    if (worst < 1e-3) break;
+    As = sr.asDiagonal() * As * sc.asDiagonal();
+    Dr = Dr.cwiseProduct(sr);
+    Dc = Dc.cwiseProduct(sc);
+  }
+  const Eigen::VectorXd bs = Dr.cwiseProduct(rhs);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(As);
+  lu.setThreshold(options.rank_tolerance);
+  const int rank = int(lu.rank());
+  if (rank < n) explain_rank_deficiency(frame, pose, lu.kernel(), Dc, rank, n, row_owner);
+  const Eigen::VectorXd y = lu.solve(bs);
+  const double residual = bs.norm() > 0 ? (As * y - bs).norm() / bs.norm() : (As * y).norm();
+  const Eigen::VectorXd x = Dc.cwiseProduct(y);
+  stats.system_seconds += clock.seconds();
+  clock.restart();
+
+  PoseSolution out;
+  out.t = frame.t;
+  out.unknowns = n;
+  out.rank = rank;
+  out.relative_residual = residual;
+  auto u_of = [&](int k) -> Vector6d { return k >= 0 ? Vector6d(x.segment<6>(ou + 6 * k)) : Vector6d::Zero(); };
+  auto lambda_of = [&](int k) -> Vector6d { return k >= 0 ? Vector6d(x.segment<6>(ol + 6 * k)) : Vector6d::Zero(); };
+
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (ground(int(b))) continue;
+    BodyMotion bm;
+    bm.body = body_name(int(b));
+    bm.elastic = part_of_body[b] >= 0;
+    bm.translation_m = x.segment<3>(oa + 6 * moving[b]);
+    bm.rotation_rad = x.segment<3>(oa + 6 * moving[b] + 3);
+    out.bodies.push_back(bm);
+  }
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const JointData& jd = joints[j];
+    const mech::Joint& joint = model.joints[size_t(jd.joint)];
+    JointLoad jl;
+    jl.joint = joint.name;
+    jl.type = joint.type;
+    jl.body_i = joint.body_i;
+    jl.body_j = joint.body_j;
+    if (jd.type == mech::JointType::Chain) {
+      const ChainPose& cp = chain_pose[j];
+      ChainResult cr;
+      cr.chain = joint.name;
+      cr.axial_stiffness_n = jd.ea;
+      cr.free_length_m = cp.b;
+      cr.stiffness_n_per_m = cp.k;
+      cr.elongation_m = cp.g * u_of(jd.if_j);
+      cr.tension_n = cp.k * cr.elongation_m;
+      cr.tangent_point_m = cp.T;
+      cr.direction = cp.n;
+      if (!(cr.tension_n > 1e-9 * P))
+        fail(
+            "elastic assembly at t = {:.6g} s: chain '{}' would have to push (tension {:.6g} N): it is slack in this "
+            "pose, and a tension-only member cannot hold it",
+            frame.t, joint.name, cr.tension_n);
+      out.chains.push_back(cr);
+      const Vector6d lj = lambda_of(jd.if_j);
+      jl.point_j_m = pose.P[size_t(jd.if_j)];
+      jl.force_on_j_n = lj.head<3>();
+      jl.moment_on_j_nm = lj.tail<3>();
+      jl.point_i_m = cp.T + cp.b * cp.n;  // the hinge
+      jl.force_on_i_n = -cr.tension_n * cp.n;
+      out.joints.push_back(jl);
+      continue;
+    }
+    const Vector6d li = lambda_of(jd.if_i), lj = lambda_of(jd.if_j);
+    if (jd.if_i >= 0) {
+      jl.point_i_m = pose.P[size_t(jd.if_i)];
+      jl.force_on_i_n = li.head<3>();
+      jl.moment_on_i_nm = li.tail<3>();
+    }
+    if (jd.if_j >= 0) {
+      jl.point_j_m = pose.P[size_t(jd.if_j)];
+      jl.force_on_j_n = lj.head<3>();
+      jl.moment_on_j_nm = lj.tail<3>();
+    }
+    if (jd.if_i < 0) {  // the ground's side: the reaction of the other
+      jl.point_i_m = jl.point_j_m;
+      jl.force_on_i_n = -jl.force_on_j_n;
+      jl.moment_on_i_nm = -jl.moment_on_j_nm;
+    }
+    if (jd.if_j < 0) {
+      jl.point_j_m = jl.point_i_m;
+      jl.force_on_j_n = -jl.force_on_i_n;
+      jl.moment_on_j_nm = -jl.moment_on_i_nm;
+    }
+    out.joints.push_back(jl);
+  }
+  for (const DriveData& dd : drives) {
+    DriveResult dr;
+    dr.drive = model.motion_drives[size_t(dd.drive)].name;
+    dr.rigid = std::isinf(dd.k);
+    dr.stiffness_nm_per_rad = dd.k;
+    dr.twist_rad = u_of(dd.if_j)(5) - u_of(dd.if_i)(5);
+    dr.moment_on_j_nm = dd.if_j >= 0 ? lambda_of(dd.if_j)(5) : -lambda_of(dd.if_i)(5);
+    out.drives.push_back(dr);
+  }
+  for (size_t p = 0; p < points.size(); ++p) {
+    PointResult pr;
+    pr.name = options.points[p].name;
+    pr.body = options.points[p].body;
+    pr.position_m = pose.P[size_t(points[p].iface)];
+    const Vector6d u = u_of(points[p].iface);
+    pr.displacement_m = u.head<3>();
+    pr.rotation_rad = u.tail<3>();
+    out.points.push_back(pr);
+  }
+
+  // Fields: u = Z_G lambda + Z_f + rigid(alpha), body axes, then world.
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const PartData& part = *parts[p];
+    const int b = part.body_index;
+    const Eigen::Matrix3d& R = pose.R[size_t(b)];
+    const Matrix6d Q = rotate6(R);
+    Eigen::VectorXd lambda_body(6 * Eigen::Index(part.interfaces.size()));
+    for (size_t l = 0; l < part.interfaces.size(); ++l)
+      lambda_body.segment<6>(6 * Eigen::Index(l)) = Q.transpose() * lambda_of(part.interfaces[l]);
+    const Eigen::VectorXd elastic = part.ZG * lambda_body + load_displacement[p];
+    const Vector3d t = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)]);
+    const Vector3d w = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)] + 3);
+    const fem::Mesh& mesh = part.supported.mesh;
+    const fem::Index N = mesh.node_count();
+    PartField field;
+    field.body = part.body;
+    field.displacement_m.resize(N, 3);
+    for (fem::Index i = 0; i < N; ++i) {
+      const Vector3d X = mesh.nodes.row(i).transpose();
+      const Vector3d ub = elastic.segment<3>(3 * i) + t + w.cross(X);
+      field.displacement_m.row(i) = (R * ub).transpose();
+    }
+    const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
+    field.max_displacement_m = magnitude.maxCoeff(&field.max_displacement_node);
+    if (options.recover_stress) {
+      const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.data(), N, 3);
+      field.von_mises_pa = fem::recover_nodal_stress(mesh, part.supported.material, ue).von_mises_pa;
+    }
+    if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
+      out.max_displacement_m = field.max_displacement_m;
+      out.max_displacement_body = field.body;
+    }
+    out.parts.push_back(std::move(field));
+  }
+  stats.recovery_seconds += clock.seconds();
+  return out;
+}
+
+void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, const Pose& pose,
+                                                    const Eigen::MatrixXd& kernel, const Eigen::VectorXd& unscale,
+                                                    int rank, int n, const std::vector<std::string>& row_owner) const {
+  (void)pose;
+  const int M = int(interfaces.size()), B = moving_count;
+  const int ou = 0, ol = 6 * M, oa = 12 * M, om = 12 * M + 6 * B;
+  const double Lr = length_scale;
+  std::vector<std::string> free_things, stressed;
+  auto note = [](std::vector<std::string>& list, const std::string& s) {
+    if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);
+  };
+  for (Eigen::Index c = 0; c < kernel.cols(); ++c) {
+    const Eigen::VectorXd y = kernel.col(c).normalized();
+    const double motion = std::max(y.segment(ou, 6 * M).norm(), y.segment(oa, 6 * B).norm());
+    const double force = std::max(y.segment(ol, 6 * M).norm(), y.segment(om, n - om).norm());
+    const Eigen::VectorXd x = unscale.cwiseProduct(y);
+    if (motion >= 1e-3 * force) {
+      // A mechanism: which free rotation moves?
+      auto rz = [&](int k) { return k >= 0 ? x(ou + 6 * k + 5) : 0.0; };
+      std::vector<std::pair<double, std::string>> candidates;
+      for (const JointData& jd : joints) {
+        if (jd.type != mech::JointType::Revolute) continue;
+        const mech::Joint& joint = model.joints[size_t(jd.joint)];
+        candidates.push_back({std::abs(rz(jd.if_j) - rz(jd.if_i)) * Lr,
+                              fmt::format("the rotation about z at joint '{}' (between '{}' and '{}')", joint.name,
+                                          joint.body_i, joint.body_j)});
+      }
+      for (const DriveData& dd : drives)
+        if (dd.k == 0.0)
+          candidates.push_back(
+              {std::abs(rz(dd.if_j) - rz(dd.if_i)) * Lr,
+               fmt::format("drive '{}' (zero torsional stiffness)", model.motion_drives[size_t(dd.drive)].name)});
+      double body_motion = 0.0;
+      std::string body_named;
+      for (size_t b = 0; b < model.bodies.size(); ++b) {
+        if (ground(int(b))) continue;
+        const double m = x.segment<3>(oa + 6 * moving[b]).norm() + Lr * x.segment<3>(oa + 6 * moving[b] + 3).norm();
+        if (m > body_motion) body_motion = m, body_named = body_name(int(b));
+      }
+      double best = 0.0;
+      for (const auto& cand : candidates) best = std::max(best, cand.first);
+      if (best > 1e-6 * body_motion) {
+        for (const auto& cand : candidates)
+          if (cand.first > 1e-3 * best) note(free_things, cand.second);
+      } else {
+        note(free_things, fmt::format("body '{}' (no joint holds it)", body_named));
+      }
+    } else {
+      for (int r = 0; r < n - om; ++r)
+        if (std::abs(y(om + r)) > 1e-3 * y.segment(om, n - om).cwiseAbs().maxCoeff()) {
+          std::string owner = row_owner[size_t(r)];
+          owner = owner.substr(0, owner.find(" ("));
+          note(stressed, owner);
+        }
+    }
+  }
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? "; " : "") + v[i];
+    return s;
+  };
+  if (!free_things.empty())
+    fail(
+        "elastic assembly at t = {:.6g} s: the structure is a mechanism (rank {} of {} unknowns): nothing holds {}; "
+        "hold it by a motion drive (rigid or with a stiffness), a chain or another joint",
+        frame.t, rank, n, join(free_things));
+  fail(
+      "elastic assembly at t = {:.6g} s: the joint loads cannot be determined (rank {} of {} unknowns): {} form a "
+      "statically indeterminate loop of rigid bodies; give one of them an elastic part",
+      frame.t, rank, n, join(stressed));
+}
+
+// ---------------------------------------------------------------------------
+
+ElasticAssembly::ElasticAssembly(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
+                                 AssemblyOptions options, const Log& log)
+    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log)) {}
+ElasticAssembly::~ElasticAssembly() = default;
+ElasticAssembly::ElasticAssembly(ElasticAssembly&&) noexcept = default;
+ElasticAssembly& ElasticAssembly::operator=(ElasticAssembly&&) noexcept = default;
+
+PoseSolution ElasticAssembly::solve(const mech::Frame& frame) {
+  return std::move(solve(std::vector<mech::Frame>{frame}).front());
+}
+
+std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>& frames) {
+  Impl& im = *impl_;
+  require(!frames.empty(), "elastic assembly: no poses to solve");
+  std::vector<PoseSolution> out;
+  out.reserve(frames.size());
+  const size_t block = 32;
+  for (size_t first = 0; first < frames.size(); first += block) {
+    const size_t count = std::min(block, frames.size() - first);
+    Stopwatch clock;
+    // Resultants of every moving body (world, about its origin): the
+    // multibody model's for the rigid bodies and for the checks.
+    std::vector<std::vector<Vector6d>> resultants(count, std::vector<Vector6d>(size_t(im.moving_count)));
+    std::vector<std::vector<double>> scales(count, std::vector<double>(size_t(im.moving_count)));
+    for (size_t f = 0; f < count; ++f) {
+      const mech::Frame& frame = frames[first + f];
+      im.check_frame(frame);
+      const std::vector<Vector3d> applied = im.system->applied_loads(frame.q, frame.q_dot, frame.t);
+      for (size_t b = 0; b < im.model.bodies.size(); ++b)
+        if (!im.ground(int(b)))
+          resultants[f][size_t(im.moving[b])] =
+              im.multibody_resultant(frame, applied, int(b), scales[f][size_t(im.moving[b])]);
+    }
+    // Each part's loads for the block, one block solve.
+    std::vector<Eigen::MatrixXd> load_displacement(im.parts.size());
+    for (size_t p = 0; p < im.parts.size(); ++p) {
+      Impl::PartData& part = *im.parts[p];
+      const fem::Mesh& mesh = part.supported.mesh;
+      const int mb = im.moving[size_t(part.body_index)];
+      Eigen::MatrixXd Fl(3 * mesh.node_count(), Eigen::Index(count));
+      for (size_t f = 0; f < count; ++f) {
+        const mech::Frame& frame = frames[first + f];
+        Fl.col(Eigen::Index(f)) = part.loads->loads_at(frame).forces;
+        Vector3d force, moment;
+        fem::resultant(mesh, Fl.col(Eigen::Index(f)), Vector3d::Zero(), force, moment);
+        const Eigen::Matrix3d R = rot_z(frame.bodies[size_t(part.body_index)].q.z());
+        Vector6d r;
+        r << R * force, R * moment;
+        const Vector6d& mb_r = resultants[f][size_t(mb)];
+        const double scale = std::max(scales[f][size_t(mb)], 1e-300);
+        const double mismatch =
+            std::max((r.head<2>() - mb_r.head<2>()).norm(), std::abs(r(5) - mb_r(5)) / im.length_scale) / scale;
+        if (!(mismatch <= im.options.load_check_tolerance) && !std::isinf(im.options.load_check_tolerance))
+          fail(
+              "{} at t = {:.6g} s: its loads without the joint reactions (resultant {:.6g}, {:.6g} N, {:.6g} N m) "
+              "differ "
+              "from its multibody body's applied minus inertia loads ({:.6g}, {:.6g} N, {:.6g} N m) by {:.2e} of their "
+              "size (tolerance {:.0e}): a load attachment is missing from the part, or the body's mass properties are "
+              "not the mesh's (pipeline::apply_mass_properties)",
+              part.label, frame.t, r(0), r(1), r(5), mb_r(0), mb_r(1), mb_r(5), mismatch,
+              im.options.load_check_tolerance);
+        resultants[f][size_t(mb)] = r;  // the part's own (with its out-of-plane components)
+      }
+      im.stats.loads_seconds += clock.seconds();
+      clock.restart();
+      load_displacement[p] = solve_columns(*part.analysis, Fl);
+      im.stats.load_solve_seconds += clock.seconds();
+      clock.restart();
+    }
+    im.stats.loads_seconds += clock.seconds();  // the rigid bodies' resultants (no parts: all of it)
+    for (size_t f = 0; f < count; ++f) {
+      std::vector<Eigen::VectorXd> z(im.parts.size());
+      for (size_t p = 0; p < im.parts.size(); ++p) z[p] = load_displacement[p].col(Eigen::Index(f));
+      out.push_back(im.solve_pose(frames[first + f], z, resultants[f]));
+      ++im.stats.poses;
+    }
+  }
+  im.stats.unknowns = out.back().unknowns;
+  return out;
+}
+
+std::vector<InterfaceInfo> ElasticAssembly::interfaces() const {
+  std::vector<InterfaceInfo> out;
+  for (const auto& i : impl_->interfaces) {
+    InterfaceInfo info;
+    info.body = impl_->body_name(i.body);
+    info.kind = i.kind == Impl::Kind::Joint ? "joint" : i.kind == Impl::Kind::Drive ? "drive" : "point";
+    info.name = i.name;
+    info.face_set = i.face_set;
+    info.reference_body_m = i.reference;
+    info.elastic = i.part >= 0;
+    out.push_back(info);
+  }
+  return out;
+}
+
+Eigen::MatrixXd ElasticAssembly::flexibility(const std::string& body) const {
+  for (const auto& p : impl_->parts)
+    if (p->body == body) return p->F;
+  fail("elastic assembly: body '{}' has no elastic part", body);
+}
+
+const AssemblyStatistics& ElasticAssembly::statistics() const { return impl_->stats; }
+
+}  // namespace kinetofem::structure
