@@ -39,7 +39,9 @@ const Written& lever_chain_histories() {
     out.model.motion_drives[0].name = "lever drive";
     out.model.bodies[2].points["grip point"] = out.model.bodies[2].points.at("H");
     out.results = mech::run_kinematics(mech::MultibodySystem(out.model), mech::equally_spaced_times(2.0, 11));
-    out.file = test::fresh_dir("histories") / "lever_chain.h5";
+    // One folder per test process: ctest runs the tests of this file in parallel.
+    out.file = test::fresh_dir(std::string("histories_") + ::testing::UnitTest::GetInstance()->current_test_info()->name()) /
+               "lever_chain.h5";
     post::ResultsWriter writer(out.file, {});
     write_mechanism_histories(writer, out.model, out.results, {{"arm", "H"}, {"arm", "grip point"}});
     writer.commit();

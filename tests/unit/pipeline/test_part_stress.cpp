@@ -46,8 +46,11 @@ BeamRun run_beam(bool with_static, const std::string& name) {
   return r;
 }
 
+// Computed once per process; the folder is named after the test that asks
+// first, because ctest runs the tests of this file in parallel processes.
 const BeamRun& with_static() {
-  static const BeamRun run = run_beam(true, "part_stress_static");
+  static const BeamRun run =
+      run_beam(true, std::string("part_stress_static_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   return run;
 }
 
