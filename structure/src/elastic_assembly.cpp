@@ -250,6 +250,45 @@ struct ElasticAssembly::Impl {
             frame.t, model.name);
   }
 
+  // Indeterminacy: the rigid-body equilibrium of every moving body (6 per
+  // body, world axes, about its origin) against the joint loads that the
+  // held components (rows of C) and spring members (g) can carry.
+  Indeterminacy indeterminacy_of(const Pose& pose, const std::vector<Eigen::RowVectorXd>& rows,
+                                 const std::vector<bool>& row_in_plane,
+                                 const std::vector<Eigen::RowVectorXd>& spring_g) const {
+    const int B = moving_count;
+    auto column = [&](const Eigen::RowVectorXd& r) {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(6 * B);
+      for (size_t k = 0; k < interfaces.size(); ++k) {
+        const int mb = moving[size_t(interfaces[k].body)];
+        e.segment<6>(6 * mb) += transfer(pose.arm[k]).transpose() * r.segment<6>(6 * Eigen::Index(k)).transpose();
+      }
+      for (int i = 0; i < 6 * B; ++i)
+        if (i % 6 >= 3) e(i) /= length_scale;  // moments as forces
+      return e;
+    };
+    auto degree = [&](bool in_plane) {
+      std::vector<Eigen::VectorXd> cols;
+      for (size_t r = 0; r < rows.size(); ++r)
+        if (row_in_plane[r] == in_plane) cols.push_back(column(rows[r]));
+      if (in_plane)
+        for (const auto& g : spring_g) cols.push_back(column(g));
+      if (cols.empty()) return 0;
+      Eigen::MatrixXd E(3 * B, Eigen::Index(cols.size()));
+      const int pick[2][3] = {{2, 3, 4}, {0, 1, 5}};
+      for (size_t c = 0; c < cols.size(); ++c) {
+        for (int b = 0; b < B; ++b)
+          for (int i = 0; i < 3; ++i) E(3 * b + i, Eigen::Index(c)) = cols[c](6 * b + pick[in_plane][i]);
+        const double norm = E.col(Eigen::Index(c)).norm();
+        if (norm > 0) E.col(Eigen::Index(c)) /= norm;
+      }
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(E);
+      qr.setThreshold(1e-9);
+      return int(cols.size()) - int(qr.rank());
+    };
+    return {degree(true), degree(false)};
+  }
+
   PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& load_displacement,
                           const std::vector<Vector6d>& resultant_world);
   [[noreturn]] void explain_rank_deficiency(const mech::Frame& frame, const Pose& pose, const Eigen::MatrixXd& kernel,
@@ -461,13 +500,18 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
   // Springs S (chains, compliant drives) and constraint rows C (6M columns).
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(6 * M, 6 * M);
   std::vector<Eigen::RowVectorXd> rows;
-  std::vector<bool> row_rotation;
+  std::vector<bool> row_rotation, row_in_plane;
   std::vector<std::string> row_owner;
-  auto add_row = [&](const Eigen::RowVectorXd& r, bool rotation, const std::string& owner) {
+  auto add_row = [&](const Eigen::RowVectorXd& r, int component, const std::string& owner) {
     rows.push_back(r);
-    row_rotation.push_back(rotation);
+    row_rotation.push_back(component >= 3);
+    row_in_plane.push_back(component == 0 || component == 1 || component == 5);
     row_owner.push_back(owner);
   };
+  // Spring members (chains, compliant drives): elongation or twist = g u.
+  std::vector<Eigen::RowVectorXd> spring_g;
+  std::vector<double> spring_k;
+  std::vector<std::string> spring_name;
   struct ChainPose {
     double k = 0, b = 0;
     Vector3d T, n;
@@ -495,6 +539,10 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
       cp.g = -cp.n.transpose() * Bm;  // elongation = n . (u_hinge - u_T), u_hinge = 0
       S.block<6, 6>(6 * jd.if_j, 6 * jd.if_j) += cp.k * cp.g.transpose() * cp.g;
       max_compliance = std::max(max_compliance, 1.0 / cp.k);
+      spring_g.push_back(Eigen::RowVectorXd::Zero(6 * M));
+      spring_g.back().segment<6>(6 * jd.if_j) = cp.g;
+      spring_k.push_back(cp.k);
+      spring_name.push_back("chain." + joint.name);
       continue;
     }
     const int held = jd.type == mech::JointType::Fixed ? 6 : 5;
@@ -504,7 +552,7 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
       Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(6 * M);
       if (jd.if_j >= 0) r(6 * jd.if_j + c) += 1.0;
       if (jd.if_i >= 0) r.segment<6>(6 * jd.if_i) -= T.row(c);
-      add_row(r, c >= 3, fmt::format("joint '{}' ({})", joint.name, kComponent[c]));
+      add_row(r, c, fmt::format("joint '{}' ({})", joint.name, kComponent[c]));
     }
   }
   for (const DriveData& dd : drives) {
@@ -513,10 +561,13 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     if (dd.if_j >= 0) g(6 * dd.if_j + 5) += 1.0;
     if (dd.if_i >= 0) g(6 * dd.if_i + 5) -= 1.0;
     if (std::isinf(dd.k)) {
-      add_row(g, true, fmt::format("drive '{}'", name));
+      add_row(g, 5, fmt::format("drive '{}'", name));
     } else {
       S += dd.k * g.transpose() * g;
       if (dd.k > 0) max_compliance = std::max(max_compliance, Lr * Lr / dd.k);
+      spring_g.push_back(g);
+      spring_k.push_back(dd.k);
+      spring_name.push_back("drive." + name);
     }
   }
   const int nc = int(rows.size());
@@ -698,14 +749,43 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     dr.moment_on_j_nm = dd.if_j >= 0 ? lambda_of(dd.if_j)(5) : -lambda_of(dd.if_i)(5);
     out.drives.push_back(dr);
   }
+  out.indeterminacy = indeterminacy_of(pose, rows, row_in_plane, spring_g);
+
+  // Unit-load method: the same (factorized) system with a unit force at the
+  // point alone gives the virtual loads of every element (Impl::Interface
+  // loads lambda_v, spring forces k g u_v); their work on the real solution
+  // is each element's contribution.
+  auto deformation_of = [&](int k) -> Vector6d {  // u_k - R_k alpha = F lambda + d (world)
+    const int mb = moving[size_t(interfaces[size_t(k)].body)];
+    return u_of(k) - transfer(pose.arm[size_t(k)]) * x.segment<6>(oa + 6 * mb);
+  };
   for (size_t p = 0; p < points.size(); ++p) {
     PointResult pr;
     pr.name = options.points[p].name;
     pr.body = options.points[p].body;
-    pr.position_m = pose.P[size_t(points[p].iface)];
-    const Vector6d u = u_of(points[p].iface);
+    const int k = points[p].iface;
+    pr.position_m = pose.P[size_t(k)];
+    const Vector6d u = u_of(k);
     pr.displacement_m = u.head<3>();
     pr.rotation_rad = u.tail<3>();
+    if (options.unit_load_split) {
+      for (const auto& part : parts) pr.contributions.push_back({"part." + part->body, Vector3d::Zero()});
+      for (const auto& name : spring_name) pr.contributions.push_back({name, Vector3d::Zero()});
+      for (int c = 0; c < 3; ++c) {
+        Eigen::VectorXd unit = Eigen::VectorXd::Zero(n);
+        unit(ol + 6 * k + c) = 1.0;  // (b): lambda_k = e_c, the point's load on its body
+        const Eigen::VectorXd xv = Dc.cwiseProduct(lu.solve(Dr.cwiseProduct(unit)));
+        pr.compliance_m_per_n.col(c) = xv.segment<3>(ou + 6 * k);
+        for (size_t q = 0; q < parts.size(); ++q)
+          for (const int l : parts[q]->interfaces)
+            pr.contributions[q].displacement_m(c) += xv.segment<6>(ol + 6 * l).dot(deformation_of(l));
+        for (size_t sm = 0; sm < spring_g.size(); ++sm) {
+          const double virtual_force = spring_k[sm] * spring_g[sm].dot(xv.segment(ou, 6 * M));
+          pr.contributions[parts.size() + sm].displacement_m(c) =
+              virtual_force * spring_g[sm].dot(x.segment(ou, 6 * M));
+        }
+      }
+    }
     out.points.push_back(pr);
   }
 

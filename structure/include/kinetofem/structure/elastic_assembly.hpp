@@ -105,6 +105,11 @@ struct AssemblyOptions {
   // Pivots below this fraction of the largest (scaled system) count as zero.
   double rank_tolerance = 1e-10;
   bool recover_stress = true;  // von Mises field of every part
+  // Per tracked point: its compliance (unit forces at it) and the split of
+  // its displacement into the contributions of the parts, chains and
+  // compliant drives (the unit-load method; three more right-hand sides of
+  // the small system per point and pose).
+  bool unit_load_split = true;
 };
 
 // Rigid motion alpha of a moving body (world axes): translation of its frame
@@ -151,11 +156,39 @@ struct DriveResult {
   double twist_rad = 0.0;       // relative rotation theta_j - theta_i of its interfaces
 };
 
+// What one element of the structure adds to a tracked point's displacement,
+// by the unit-load method: component c is the virtual work of the unit force
+// e_c at the point (its internal loads in this element) on the element's real
+// deformation. A part: lambda_v^T (F lambda + d) over its interfaces; a
+// chain: N_v N / k; a compliant drive: M_v M / k_d. Rigid bodies, pins and
+// rigid drives do no work. The contributions add up to the displacement
+// exactly (Maxwell-Betti; up to round-off).
+struct PointContribution {
+  std::string name;  // "part.<body>", "chain.<chain>", "drive.<drive>"
+  Eigen::Vector3d displacement_m = Eigen::Vector3d::Zero();  // world axes
+};
+
 struct PointResult {
   std::string name, body;
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // world, rigid configuration
   Eigen::Vector3d displacement_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d rotation_rad = Eigen::Vector3d::Zero();
+  // Unless AssemblyOptions::unit_load_split is false:
+  // column c = the point's displacement under a unit force e_c at it alone
+  // (world axes, m/N; symmetric by Maxwell-Betti).
+  Eigen::Matrix3d compliance_m_per_n = Eigen::Matrix3d::Zero();
+  // Every part, chain and compliant drive, in that order (model order).
+  std::vector<PointContribution> contributions;
+};
+
+// How many joint loads the rigid-body equilibrium of the pose leaves
+// undetermined: (number of held components and spring members) - rank of
+// the bodies' equilibrium equations, in the plane (x, y, rotation about z)
+// and out of it (z, rotations about x and y). 0: statically determinate, the
+// joint loads are the multibody reactions whatever the parts' stiffness; > 0:
+// they depend on the stiffness of the parts, chains and drives.
+struct Indeterminacy {
+  int in_plane = 0, out_of_plane = 0;
 };
 
 struct PoseSolution {
@@ -168,6 +201,7 @@ struct PoseSolution {
   std::vector<PointResult> points;  // options.points order
   int unknowns = 0, rank = 0;
   double relative_residual = 0.0;   // of the dense system (scaled)
+  Indeterminacy indeterminacy;
   double max_displacement_m = 0.0;  // over the parts' nodes
   std::string max_displacement_body;
 
