@@ -7,6 +7,7 @@
 #include <numbers>
 #include <set>
 
+#include "kinetofem/app/assembly_keys.hpp"
 #include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/motion_keys.hpp"
@@ -17,7 +18,7 @@
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/time_grid.hpp"
-#include "kinetofem/pipeline/motion_to_stress.hpp"
+#include "kinetofem/driver/motion_to_stress.hpp"
 #include "kinetofem/pipeline/run_report.hpp"
 
 namespace kinetofem::app {
@@ -216,6 +217,7 @@ const std::vector<KeySpec>& linkage_schema() {
     add_coordinate_keys(s, "simulation.coordinate.", false);
     // FE parts and the stress over the motion
     add_part_keys(s);
+    add_linkage_assembly_keys(s);
     for (auto&& k : part_mesh_keys()) s.push_back(std::move(k));
     for (auto&& k : motion_solver_keys()) s.push_back(std::move(k));
     s.push_back({.path = "static_study.enabled", .type = Type::Boolean, .default_number = 0,
@@ -403,7 +405,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   const std::string name = mechanism_case_name(c);
 
   // ---- read the case: the mechanism, its parts, the run ----------------------
-  pipeline::MotionStressCase run_case;
+  driver::MotionStressCase run_case;
   run_case.label = c.path().string();
   run_case.model = read_linkage_model(c);
   const mech::MultibodyModel& m = run_case.model;
@@ -435,6 +437,11 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
     require(dot != std::string::npos, "{} = \"{}\": write \"body.point\"", c.where("output.tracked_points"), text);
     run_case.tracked_points.push_back({text.substr(0, dot), text.substr(dot + 1)});
   }
+  {
+    std::vector<std::string> bodies_with_parts;
+    for (const auto& p : run_case.parts) bodies_with_parts.push_back(p.attachments.body);
+    run_case.assembly = read_linkage_assembly(c, m, bodies_with_parts);
+  }
   run_case.material = read_material(c);
   run_case.mesh = read_part_mesh_options(c, options.output_dir);
   run_case.stress = read_stress_options(c);
@@ -442,7 +449,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   run_case.provenance = mechanism_provenance(c, options);
 
   // ---- run the pipeline ------------------------------------------------------
-  pipeline::MotionStressRun result = pipeline::run_motion_to_stress(run_case, log);
+  driver::MotionStressRun result = driver::run_motion_to_stress(run_case, log);
 
   // ---- summary ----------------------------------------------------------------
   LinkageRun run;
@@ -450,6 +457,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   run.results = std::move(result.motion);
   run.results_file = result.results_file;
   run.parts = result.parts;
+  run.assembly = result.assembly;
   const pipeline::MechanismExtremes extremes = pipeline::mechanism_extremes(run.model, run.results);
   run.max_abs_drive_effort = extremes.max_abs_drive_effort;
   run.min_chain_tension_n = extremes.min_chain_tension_n;
@@ -457,6 +465,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   std::printf("\nSummary of '%s' (linkage, %s, %zu output times over %.4g s)\n%s", name.c_str(), method.c_str(),
               run.results.frames.size(), run_case.times.back(), extremes.text.c_str());
   if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
+  if (run.assembly) std::printf("%s", structure::format_assembly_summary(*run.assembly).c_str());
   std::printf("%s\n", run.results.format_checks().c_str());
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());
   return run;

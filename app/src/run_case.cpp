@@ -21,13 +21,27 @@ RunSummary summary_of(const FeStaticSummary& s) {
           .extra = {{"dofs", double(s.dof_count)}, {"reaction_balance", s.reaction_balance}}};
 }
 
+// The elastic assembly's key results: total deformation (max |u| over all
+// nodes, world, from the rigid pose) and the tracked points' deflection.
+void add_assembly_results(RunSummary& s, const std::optional<structure::AssemblySummary>& a) {
+  if (!a) return;
+  s.extra.push_back({"total_deformation_mm", a->max_displacement_m / kMm});
+  if (a->has_static_study) s.extra.push_back({"static_total_deformation_mm", a->static_max_displacement_m / kMm});
+  for (const auto& p : a->points) {
+    s.extra.push_back({"max_deflection_" + p.name + "_mm", p.max_displacement_m / kMm});
+    if (p.has_static_study) s.extra.push_back({"static_deflection_" + p.name + "_mm", p.static_displacement_m.norm() / kMm});
+  }
+}
+
 RunSummary summary_of(const ManipulatorSummary& s) {
-  return {.type = "manipulator", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
-          .max_displacement_m = s.max_displacement_m,
-          .extra = {{"static_max_von_mises_mpa", s.static_max_von_mises_pa / kMpa},
-                    {"static_max_displacement_mm", s.static_max_displacement_m / kMm},
-                    {"max_drive_torque_nm", s.max_drive_torque_nm},
-                    {"min_chain_tension_n", s.min_chain_tension_n}}};
+  RunSummary r{.type = "manipulator", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
+               .max_displacement_m = s.max_displacement_m,
+               .extra = {{"static_max_von_mises_mpa", s.static_max_von_mises_pa / kMpa},
+                         {"static_max_displacement_mm", s.static_max_displacement_m / kMm},
+                         {"max_drive_torque_nm", s.max_drive_torque_nm},
+                         {"min_chain_tension_n", s.min_chain_tension_n}}};
+  add_assembly_results(r, s.assembly);
+  return r;
 }
 
 RunSummary summary_of(const LinkageRun& r) {
@@ -37,6 +51,7 @@ RunSummary summary_of(const LinkageRun& r) {
                .extra = {{"max_abs_drive_effort", r.max_abs_drive_effort}}};
   if (!r.results.frames.empty() && !r.results.frames.front().chains.empty())
     s.extra.push_back({"min_chain_tension_n", r.min_chain_tension_n});
+  add_assembly_results(s, r.assembly);
   return s;
 }
 

@@ -13,6 +13,17 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
                                       const std::vector<mech::Frame>& frames, const Log& log,
                                       const LinkStressOptions& options, const StepCallback& on_step) {
   require(!frames.empty(), "link '{}': no output times to analyse", loads.body());
+  log.info("link '{}': stiffness assembly and factorization (once for {} output times)",
+           loads.body(), frames.size());
+  fem::LinearStaticAnalysis analysis(model, log, options.solver);
+  return analyse_link_over_motion(analysis, loads, frames, log, options, on_step);
+}
+
+LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads,
+                                      const std::vector<mech::Frame>& frames, const Log& log,
+                                      const LinkStressOptions& options, const StepCallback& on_step) {
+  require(!frames.empty(), "link '{}': no output times to analyse", loads.body());
+  const fem::FeModel& model = analysis.model();
   const fem::Index nodes = model.mesh.node_count();
   std::vector<fem::Index> supported;
   for (const auto& s : model.supports) supported.insert(supported.end(), s.nodes.begin(), s.nodes.end());
@@ -23,10 +34,7 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
   env.max_displacement_m = Eigen::VectorXd::Constant(nodes, -1.0);
   env.max_displacement_step = Eigen::VectorXi::Zero(nodes);
 
-  log.info("link '{}': stiffness assembly and factorization (once for {} output times)",
-           loads.body(), frames.size());
   Stopwatch clock;
-  fem::LinearStaticAnalysis analysis(model, log, options.solver);
   env.assembly_seconds = analysis.timings().assembly_seconds;
 
   Progress progress(log, fmt::format("link '{}' time steps", loads.body()), long(frames.size()));

@@ -6,15 +6,35 @@
 
 namespace kinetofem::pipeline {
 
-PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyModel& model,
-                                     const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
-                                     post::ResultsWriter& writer, const loads::LinkStressOptions& options,
-                                     const Log& log) {
-  require(!motion.empty(), "{}: no output times to analyse", part.spec.label);
-  fem::FeModel supported = part.model;
+namespace {
+
+fem::FeModel with_three_two_one_support(const fem::FeModel& model) {
+  fem::FeModel supported = model;
   std::vector<fem::Index> all(size_t(supported.mesh.node_count()));
   for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
   supported.supports = fem::three_two_one_support(supported.mesh, all);
+  return supported;
+}
+
+}  // namespace
+
+SupportedPart::SupportedPart(const Part& part, const fem::StaticSolverOptions& solver, const Log& log)
+    : model_(with_three_two_one_support(part.model)) {
+  log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", part.body());
+  analysis_ = std::make_unique<fem::LinearStaticAnalysis>(model_, log, solver);
+}
+
+PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyModel& model,
+                                     const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
+                                     post::ResultsWriter& writer, const loads::LinkStressOptions& options,
+                                     const Log& log, const SupportedPart* factorized) {
+  require(!motion.empty(), "{}: no output times to analyse", part.spec.label);
+  std::unique_ptr<SupportedPart> own;
+  if (!factorized) {
+    own = std::make_unique<SupportedPart>(part, options.solver, log);
+    factorized = own.get();
+  }
+  const fem::FeModel& supported = factorized->model();
 
   loads::LinkDefinition definition = part.spec.attachments;
   definition.model = &supported;
@@ -49,7 +69,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     ps.static_displacement_m = fem::displacement_magnitude(u).maxCoeff();
   };
   const loads::LinkEnvelope env =
-      loads::analyse_link_over_motion(supported, link_loads, frames, log, stress_options, on_step);
+      loads::analyse_link_over_motion(factorized->analysis(), link_loads, frames, log, stress_options, on_step);
   const post::IndexMatrix vm_step = env.max_von_mises_step.cast<fem::Index>();
   const post::IndexMatrix u_step = env.max_displacement_step.cast<fem::Index>();
   body.write_envelope("von_mises", "Pa", env.max_von_mises_pa, vm_step, "max");

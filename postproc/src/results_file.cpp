@@ -259,6 +259,19 @@ FieldData ResultsFile::read_step(const std::string& body, const std::string& fie
   return out;
 }
 
+std::string ResultsFile::geometry_field(const std::string& body) const {
+  const Impl& f = *impl_;
+  const std::string group = join(f.body_path(body), layout::kSeries);
+  for (const auto& field : series_fields(body)) {
+    const std::string p = join(group, field);
+    h5::Handle d = h5::open_dataset(f.io, f.file.get(), p, p);
+    if (h5::has_attribute(f.io, d.get(), p, layout::kXdmfGeometry) &&
+        h5::read_int_attribute(f.io, d.get(), p, layout::kXdmfGeometry) != 0)
+      return field;
+  }
+  return "";
+}
+
 std::vector<std::string> ResultsFile::envelopes(const std::string& body) const {
   return impl_->children_of(join(impl_->body_path(body), layout::kEnvelopes),
                             h5::ChildKind::Group);

@@ -290,6 +290,7 @@ void BodyWriter::begin_series(const std::vector<SeriesField>& fields) {
   require(!s.series.valid(), "body '{}' already has a time series", name_);
   require(!fields.empty(), "time series of body '{}' has no fields", name_);
   std::set<std::string> seen;
+  std::string geometry;  // the field marked `geometry`, if any
   for (const auto& field : fields) {
     require_valid_name(field.name, "field");
     require(field.name != layout::kTime, "series field name 'time' is reserved (body '{}')", name_);
@@ -300,6 +301,17 @@ void BodyWriter::begin_series(const std::vector<SeriesField>& fields) {
     require(field.component_names.empty() || int(field.component_names.size()) == field.components,
             "series field '{}' has {} components but {} component names", field.name,
             field.components, field.component_names.size());
+    if (field.geometry) {
+      require(field.components == 3,
+              "series field '{}' of body '{}' is marked as the geometry but has {} components "
+              "(a geometry is N x 3 coordinates, m)",
+              field.name, name_, field.components);
+      require(geometry.empty(),
+              "series fields '{}' and '{}' of body '{}' are both marked as the geometry (at most "
+              "one per body)",
+              geometry, field.name, name_);
+      geometry = field.name;
+    }
   }
   file_.guarded([&] {
     const h5::H5Io& io = file_.io;
@@ -336,6 +348,11 @@ void BodyWriter::begin_series(const std::vector<SeriesField>& fields) {
       if (!field.component_names.empty())
         h5::write_attribute(io, s.datasets.back().get(), path, "components",
                             field.component_names);
+      if (field.geometry) {
+        h5::write_attribute(io, s.datasets.back().get(), path, layout::kXdmfGeometry,
+                            std::int64_t(1));
+        s.grid.geometry_series = int(s.grid.series.size());
+      }
       s.grid.series.push_back({field.name, path, node_count_, field.components, false, false});
     }
   });

@@ -90,8 +90,7 @@ class Writer {
                        dims, integer ? "Int" : "Float", h5_, escaped(dataset));
   }
 
-  // Topology and Geometry: 2 elements.
-  void mesh(int indent, const Grid& grid) {
+  void topology(int indent, const Grid& grid) {
     if (grid.blocks.size() == 1) {
       const Block& block = grid.blocks.front();
       const int n = fem::nodes_per_element(block.type);
@@ -105,8 +104,19 @@ class Writer {
       line(indent + 1, hdf_item(fmt::format("{}", grid.mixed_length), grid.mixed_dataset, true));
     }
     line(indent, "</Topology>");
+  }
+
+  // The mesh's own coordinates (mesh/nodes).
+  void geometry(int indent, const Grid& grid) {
     line(indent, R"(<Geometry GeometryType="XYZ">)");
     line(indent + 1, hdf_item(fmt::format("{} 3", grid.nodes), grid.nodes_dataset, false));
+    line(indent, "</Geometry>");
+  }
+
+  // The coordinates of time step `step`: the geometry series field's slice.
+  void step_geometry(int indent, const Attribute& a, size_t step, size_t steps) {
+    line(indent, R"(<Geometry GeometryType="XYZ">)");
+    slice_item(indent + 1, a, step, steps);
     line(indent, "</Geometry>");
   }
 
@@ -126,30 +136,55 @@ class Writer {
   // (Format="HDF"; Xdmf3 ignores Type); Xdmf2 reads Type="HyperSlab" (its ItemType)
   // and the two child DataItems (start/stride/count, then the whole dataset) and
   // ignores the text.
-  void step_attribute(int indent, const Attribute& a, const std::string& name, size_t step,
-                      size_t steps) {
-    attribute_open(indent, name, attribute_type(a.components), "Node");
-    line(indent + 1,
+  void slice_item(int indent, const Attribute& a, size_t step, size_t steps) {
+    line(indent,
          fmt::format(R"(<DataItem Type="HyperSlab" Dimensions="{1} {2}" NumberType="{3}" Precision="8" Format="HDF">{4}:{5}|{0} 0 0:1 1 1:1 {1} {2}:{6} {1} {2})",
                      step, a.rows, a.components, a.integer ? "Int" : "Float", h5_,
                      escaped(a.dataset), steps));
-    line(indent + 2, fmt::format(R"(<DataItem Dimensions="3 3" NumberType="Int" Format="XML">{} 0 0 1 1 1 1 {} {}</DataItem>)",
+    line(indent + 1, fmt::format(R"(<DataItem Dimensions="3 3" NumberType="Int" Format="XML">{} 0 0 1 1 1 1 {} {}</DataItem>)",
                                  step, a.rows, a.components));
-    line(indent + 2, hdf_item(fmt::format("{} {} {}", steps, a.rows, a.components), a.dataset,
+    line(indent + 1, hdf_item(fmt::format("{} {} {}", steps, a.rows, a.components), a.dataset,
                               a.integer));
-    line(indent + 1, "</DataItem>");
+    line(indent, "</DataItem>");
+  }
+
+  void step_attribute(int indent, const Attribute& a, const std::string& name, size_t step,
+                      size_t steps) {
+    attribute_open(indent, name, attribute_type(a.components), "Node");
+    slice_item(indent + 1, a, step, steps);
     line(indent, "</Attribute>");
   }
 
-  // The elements of a body's grid before its series fields: mesh and static attributes.
-  void body_static_content(int indent, const BodyView& body) {
-    mesh(indent, *body.grid);
-    for (size_t i = 0; i < body.grid->attributes.size(); ++i)
-      static_attribute(indent, body.grid->attributes[i], body.static_names[i]);
+  // The elements of a body's grid before its series fields: Topology, Geometry (of
+  // step `step` for a moving body) and the static attributes.
+  void body_static_content(int indent, const BodyView& body, size_t step = 0) {
+    const Grid& grid = *body.grid;
+    topology(indent, grid);
+    if (moving(grid))
+      step_geometry(indent, grid.series[size_t(grid.geometry_series)], step, grid.times_s.size());
+    else
+      geometry(indent, grid);
+    for (size_t i = 0; i < grid.attributes.size(); ++i)
+      static_attribute(indent, grid.attributes[i], body.static_names[i]);
   }
 
-  static size_t static_element_count(const BodyView& body) {
-    return 2 + body.grid->attributes.size();
+  // The same for step k > 0, including the repeated part from step 0: everything
+  // but a moving body's Geometry. Children of a step grid: 1 Time, 2 Topology,
+  // 3 Geometry, 4... static attributes.
+  void body_static_content_included(int indent, const BodyView& body, size_t step) {
+    const Grid& grid = *body.grid;
+    const size_t last = 3 + grid.attributes.size();
+    if (!moving(grid)) {
+      include(indent, grid.name, 2, last);
+      return;
+    }
+    include(indent, grid.name, 2, 2);
+    step_geometry(indent, grid.series[size_t(grid.geometry_series)], step, grid.times_s.size());
+    if (!grid.attributes.empty()) include(indent, grid.name, 4, last);
+  }
+
+  static bool moving(const Grid& grid) {
+    return grid.geometry_series >= 0 && !grid.times_s.empty();
   }
 
   // The grid of the mechanism histories: one vertex at the origin, the histories and
@@ -184,12 +219,13 @@ class Writer {
     }
   }
 
-  // <xi:include> of the first step's content of temporal collection `collection`:
-  // its child elements after the Time, the first `count` of them (all if count is 0).
-  void include(int indent, const std::string& collection, size_t count) {
-    const std::string which = count == 0
-                                  ? std::string("position() &gt; 1")
-                                  : fmt::format("position() &gt; 1 and position() &lt;= {}", count + 1);
+  // <xi:include> of children `first` to `last` (1-based, 1 is the Time; last 0: to
+  // the end) of the first step of temporal collection `collection`.
+  void include(int indent, const std::string& collection, size_t first, size_t last) {
+    const std::string which =
+        first == last ? fmt::format("position() = {}", first)
+        : last == 0   ? fmt::format("position() &gt; {}", first - 1)
+                      : fmt::format("position() &gt; {} and position() &lt;= {}", first - 1, last);
     line(indent, fmt::format(R"x(<xi:include xpointer="xpointer(/Xdmf/Domain/Grid[@Name='{}']/Grid[1]/*[{}])"/>)x",
                              escaped(collection), which));
   }
@@ -242,7 +278,7 @@ std::string document(const std::string& h5_file, const std::vector<Grid>& grids,
       if (j == 0)
         content(4);
       else
-        w.include(4, name, 0);
+        w.include(4, name, 2, 0);
       w.line(3, "</Grid>");
     }
     w.line(2, "</Grid>");
@@ -267,7 +303,7 @@ std::string document(const std::string& h5_file, const std::vector<Grid>& grids,
       if (k == 0)
         w.body_static_content(4, body);
       else
-        w.include(4, grid.name, Writer::static_element_count(body));
+        w.body_static_content_included(4, body, k);
       for (size_t i = 0; i < grid.series.size(); ++i)
         w.step_attribute(4, grid.series[i], body.series_names[i], k, grid.times_s.size());
       w.line(3, "</Grid>");

@@ -9,7 +9,10 @@
 //     nodal fields, the element fields and the envelopes;
 //   - with a time series: a Temporal collection "<body>" with one Uniform grid
 //     per output time, each with all of the above plus the series fields at that
-//     time;
+//     time; if a series field is the body's geometry (SeriesField::geometry),
+//     each step's Geometry is that field at that time (the same slice DataItem as
+//     a series attribute; the field is an attribute too), so the body moves, and
+//     the static fields and envelopes are shown on the moving geometry;
 // and, if the file has mechanism histories, a grid "mechanism" (one vertex at
 // the origin) whose Grid-centred attributes (ParaView field data, one row per
 // mechanism time) are "time" and the histories. In a file with time steps, every
@@ -26,7 +29,9 @@
 //     child DataItems and ignores the text.
 //   - vtkXdmf3 shows only grids with a Time when a file has time steps, so static
 //     content is repeated in every step, by XInclude/XPointer of the collection's
-//     first step (no per-step copies of the mesh text).
+//     first step (no per-step copies of the mesh text; for a moving body two
+//     includes, the Topology and the static attributes, around the step's own
+//     Geometry).
 //   - One Temporal collection per body, not one of Spatial collections per time:
 //     both libraries make grid names unique over the document ("lever",
 //     "lever[5]", ...), so per-time grid names would change the block names from
@@ -67,6 +72,9 @@ struct Grid {
   std::vector<Attribute> attributes;  // static: nodal, element, envelopes
   std::vector<Attribute> series;      // rows = nodes; dataset is (T, N, c)
   std::vector<double> times_s;
+  // Index into `series` of the (T, N, 3) field that is the geometry of each step
+  // (SeriesField::geometry); -1: every step shows nodes_dataset.
+  int geometry_series = -1;
 };
 
 // One mechanism history: a (rows, components) dataset over the mechanism time grid.

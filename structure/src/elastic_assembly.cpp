@@ -1,5 +1,7 @@
 #include "kinetofem/structure/elastic_assembly.hpp"
 
+#include "kinetofem/structure/rigid_bore.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -65,6 +67,10 @@ const char* const kComponent[6] = {"x", "y", "z", "rx", "ry", "rz"};
 
 // ---------------------------------------------------------------------------
 
+const char* name_of(BoreCoupling coupling) {
+  return coupling == BoreCoupling::RigidBore ? "rigid_bore" : "distributing";
+}
+
 const PartField& PoseSolution::part(const std::string& name) const {
   for (const auto& p : parts)
     if (p.body == name) return p;
@@ -111,7 +117,10 @@ struct ElasticAssembly::Impl {
     int body_index = -1;
     fem::FeModel supported;
     loads::LinkDefinition attachments;  // as given (joints, drives and all)
-    std::unique_ptr<fem::LinearStaticAnalysis> analysis;
+    std::unique_ptr<fem::LinearStaticAnalysis> own_analysis;
+    fem::LinearStaticAnalysis* analysis = nullptr;  // own_analysis or one given (shared with the per-part stage)
+    fem::LinearStaticAnalysis* given_analysis = nullptr;
+    std::unique_ptr<RigidBoreCondensation> rigid;  // BoreCoupling::RigidBore: replaces G, Z_G, F
     std::unique_ptr<loads::LinkLoads> loads;
     std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings;  // per local interface
     std::vector<int> interfaces;                                        // global indices, local order
@@ -154,7 +163,8 @@ struct ElasticAssembly::Impl {
   std::vector<PointData> points;
   AssemblyStatistics stats;
 
-  Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l);
+  Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l,
+       const std::vector<fem::LinearStaticAnalysis*>& factorized);
 
   int body_index(const std::string& name, const std::string& who) const {
     for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -297,8 +307,10 @@ struct ElasticAssembly::Impl {
 };
 
 ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o,
-                            const Log& l)
+                            const Log& l, const std::vector<fem::LinearStaticAnalysis*>& factorized)
     : log(l), options(std::move(o)), model(m) {
+  require(factorized.empty() || factorized.size() == given.size(),
+          "elastic assembly: {} factorizations given for {} parts", factorized.size(), given.size());
   Stopwatch clock;
   system = std::make_unique<mech::MultibodySystem>(model);
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
@@ -327,6 +339,16 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
     for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
     data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
+    if (!factorized.empty() && factorized[parts.size()]) {
+      // A factorization made before must be of this very supported model.
+      const fem::FeModel& theirs = factorized[parts.size()]->model();
+      bool same = theirs.mesh.node_count() == data->supported.mesh.node_count() &&
+                  theirs.supports.size() == data->supported.supports.size();
+      for (size_t k = 0; same && k < theirs.supports.size(); ++k)
+        same = theirs.supports[k].nodes == data->supported.supports[k].nodes;
+      require(same, "{}: the factorization given is not of this part with its 3-2-1 support", data->label);
+      data->given_analysis = factorized[parts.size()];
+    }
     for (const auto& a : data->attachments.joints) {
       const auto it = std::find_if(model.joints.begin(), model.joints.end(),
                                    [&](const mech::Joint& j) { return j.name == a.joint; });
@@ -464,8 +486,30 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     const fem::Index dofs = 3 * fe.mesh.node_count();
     log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part->body, fe.mesh.node_count(),
              part->interfaces.size());
-    part->analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
+    if (part->given_analysis) {
+      part->analysis = part->given_analysis;
+    } else {
+      part->own_analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
+      part->analysis = part->own_analysis.get();
+    }
     const Eigen::Index m = Eigen::Index(part->interfaces.size());
+    if (options.coupling == BoreCoupling::RigidBore) {
+      std::vector<RigidBoreInterface> bores;
+      for (const int g : part->interfaces) bores.push_back({interfaces[size_t(g)].face_set, interfaces[size_t(g)].reference});
+      try {
+        part->rigid = std::make_unique<RigidBoreCondensation>(*part->analysis, fe.mesh, bores, log);
+      } catch (const Error& e) {
+        fail("{}: rigid-bore couplings: {}", part->label, e.what());
+      }
+      part->G = part->rigid->loads();
+      part->ZG = part->rigid->load_displacement();
+      part->F = part->rigid->flexibility();
+      part->F = 0.5 * (part->F + part->F.transpose()).eval();
+      stats.part_dofs += long(dofs);
+      stats.interface_columns += long(part->rigid->statistics().setup_solves);
+      if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+      continue;
+    }
     part->G = Eigen::MatrixXd::Zero(dofs, 6 * m);
     for (Eigen::Index l = 0; l < m; ++l) {
       const Vector3d& X = interfaces[size_t(part->interfaces[size_t(l)])].reference;
@@ -479,7 +523,7 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     part->F = 0.5 * (part->F + part->F.transpose()).eval();
     stats.part_dofs += long(dofs);
     stats.interface_columns += long(6 * m);
-    stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+    if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
   }
   stats.elastic_parts = int(parts.size());
   stats.rigid_bodies = moving_count - int(parts.size());
@@ -902,8 +946,9 @@ void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, co
 // ---------------------------------------------------------------------------
 
 ElasticAssembly::ElasticAssembly(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
-                                 AssemblyOptions options, const Log& log)
-    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log)) {}
+                                 AssemblyOptions options, const Log& log,
+                                 const std::vector<fem::LinearStaticAnalysis*>& factorized)
+    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log, factorized)) {}
 ElasticAssembly::~ElasticAssembly() = default;
 ElasticAssembly::ElasticAssembly(ElasticAssembly&&) noexcept = default;
 ElasticAssembly& ElasticAssembly::operator=(ElasticAssembly&&) noexcept = default;
@@ -967,6 +1012,7 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
       im.stats.loads_seconds += clock.seconds();
       clock.restart();
       load_displacement[p] = solve_columns(*part.analysis, Fl);
+      if (part.rigid) load_displacement[p] += part.rigid->correction(load_displacement[p]);
       im.stats.load_solve_seconds += clock.seconds();
       clock.restart();
     }

@@ -495,6 +495,79 @@ TEST(ResultsFile, BadSeriesCallsAreErrorsNamingTheFieldAndStep) {
   EXPECT_THROW(writer.commit(), Error);
 }
 
+TEST(ResultsFile, GeometrySeriesFieldIsMarkedInTheFileAndReadBack) {
+  TemporaryDirectory dir;
+  const fem::Mesh mesh = testing::single_tet10();
+  const FieldMatrix position = field_of(mesh, 3, 1.0), vm = field_of(mesh, 1, 1e6);
+  {
+    ResultsWriter writer(dir / "run.h5", test_provenance());
+    BodyWriter& moving = writer.add_body("assembly.lever", mesh);
+    moving.begin_series({{"displacement", "m", 3, kVectorComponents},
+                         {"position", "m", 3, kVectorComponents, /*geometry=*/true},
+                         {"von_mises", "Pa", 1}});
+    moving.write_step(0.0, {{"displacement", position}, {"position", position}, {"von_mises", vm}});
+    BodyWriter& still = writer.add_body("lever", mesh);
+    still.begin_series({{"position", "m", 3, kVectorComponents}});
+    still.write_step(0.0, {{"position", position}});
+    writer.add_body("base", mesh);
+    writer.commit();
+  }
+  const ResultsFile file = ResultsFile::open(dir / "run.h5");
+  EXPECT_EQ(file.format_version(), 1);  // an added attribute: the layout is unchanged
+  EXPECT_EQ(file.geometry_field("assembly.lever"), "position");
+  EXPECT_EQ(file.geometry_field("lever"), "");
+  EXPECT_EQ(file.geometry_field("base"), "");  // no series at all
+  EXPECT_THROW(file.geometry_field("crank"), Error);
+  EXPECT_EQ(file.read_step("assembly.lever", "position", 0).values, position);
+  EXPECT_EQ(file.read_step("assembly.lever", "position", 0).units, "m");
+
+  // The flag is the int64 attribute xdmf_geometry = 1 on the series dataset itself.
+  const hid_t h5 = H5Fopen((dir / "run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(h5, 0);
+  const hid_t dataset = H5Dopen2(h5, "/bodies/assembly.lever/series/position", H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  ASSERT_GT(H5Aexists(dataset, layout::kXdmfGeometry), 0);
+  const hid_t attribute = H5Aopen(dataset, layout::kXdmfGeometry, H5P_DEFAULT);
+  std::int64_t flag = 0;
+  EXPECT_GE(H5Aread(attribute, H5T_NATIVE_INT64, &flag), 0);
+  EXPECT_EQ(flag, 1);
+  H5Aclose(attribute);
+  const hid_t other = H5Dopen2(h5, "/bodies/assembly.lever/series/displacement", H5P_DEFAULT);
+  EXPECT_EQ(H5Aexists(other, layout::kXdmfGeometry), 0);
+  H5Dclose(other);
+  H5Dclose(dataset);
+  H5Fclose(h5);
+}
+
+TEST(ResultsFile, GeometryIsAtMostOneThreeComponentSeriesField) {
+  TemporaryDirectory dir;
+  const fem::Mesh mesh = testing::single_tet10();
+  ResultsWriter writer(dir / "run.h5", test_provenance());
+  BodyWriter& body = writer.add_body("assembly.lever", mesh);
+  auto message_of = [&](const std::vector<SeriesField>& fields) {
+    try {
+      body.begin_series(fields);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no Error");
+  };
+  const std::string one = message_of({{"von_mises", "Pa", 1, {}, true}});
+  EXPECT_NE(one.find("'assembly.lever'"), std::string::npos) << one;
+  EXPECT_NE(one.find("'von_mises'"), std::string::npos) << one;
+  EXPECT_NE(one.find("1 components"), std::string::npos) << one;
+  const std::string two = message_of({{"position", "m", 3, kVectorComponents, true},
+                                      {"deformed", "m", 3, kVectorComponents, true}});
+  EXPECT_NE(two.find("'assembly.lever'"), std::string::npos) << two;
+  EXPECT_NE(two.find("'position'"), std::string::npos) << two;
+  EXPECT_NE(two.find("'deformed'"), std::string::npos) << two;
+  // The refused declarations left nothing behind: a correct one still works.
+  body.begin_series({{"position", "m", 3, kVectorComponents, true}});
+  body.write_step(0.0, {{"position", mesh.nodes}});
+  writer.commit();
+  EXPECT_EQ(ResultsFile::open(dir / "run.h5").geometry_field("assembly.lever"), "position");
+}
+
 TEST(ResultsFile, ReaderErrorsNameWhatIsMissing) {
   TemporaryDirectory dir;
   WrittenRun().write(dir / "run.h5");

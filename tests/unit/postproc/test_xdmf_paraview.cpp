@@ -7,8 +7,16 @@
 // counts, arrays and sample values), and "paraview_empty.h5/.xdmf" (nothing). With KINETOFEM_XDMF_SAMPLE_DIR set it writes
 // them there and keeps them: scripts/test-xdmf-paraview.sh (ctest label
 // `paraview`) does so and runs scripts/check_xdmf_paraview.py on them.
+// XdmfParaViewSample.MovingBodyMovesInAllThreeReaders runs only there (with the
+// directory set and pvpython found): it opens a moving body (its geometry is a series
+// field) with the three readers and checks where its points are at every step.
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -149,10 +157,54 @@ std::string json_block(const ExpectedBlock& b) {
       b.name, b.points, b.cells, group(b.point), group(b.cell), group(b.field));
 }
 
+// A body that moves: the TET10 "assembly.crank" whose series field `position` is its
+// geometry (SeriesField::geometry): the mesh translated by kMovingOffset at step 0 and
+// by kMovingStep more at every step, plus displacement, displacement_magnitude,
+// von_mises and a von_mises envelope (what the pipeline writes for an assembly body).
+constexpr double kMovingOffset[3] = {1.0, 2.0, 3.0};
+constexpr double kMovingStep[3] = {0.5, -0.25, 0.125};
+
+FieldMatrix moved(const fem::Mesh& mesh, int step) {
+  FieldMatrix p = mesh.nodes;
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    for (int c = 0; c < 3; ++c) p(i, c) += kMovingOffset[c] + step * kMovingStep[c];
+  return p;
+}
+
+ExpectedBlock add_moving_body(ResultsWriter& writer, const std::vector<double>& times) {
+  const fem::Mesh mesh = testing::single_tet10();
+  const fem::Index n = mesh.node_count();
+  BodyWriter& body = writer.add_body("assembly.crank", mesh);
+  body.begin_series({{"position", "m", 3, kVectorComponents, true},
+                     {"displacement", "m", 3, kVectorComponents},
+                     {"displacement_magnitude", "m", 1},
+                     {"von_mises", "Pa", 1}});
+  ExpectedArray position{"position", {}, {}}, u{"displacement", {}, {}},
+      magnitude{"displacement_magnitude", {}, {}}, vm{"von_mises", {}, {}};
+  for (int k = 0; k < int(times.size()); ++k) {
+    position.steps.push_back(moved(mesh, k));
+    u.steps.push_back(field(n, 3, 0.0625, k) / 1024.0);
+    magnitude.steps.push_back(field(n, 1, 0.5, k) / 1024.0);
+    vm.steps.push_back(field(n, 1, 1000000.5, k));
+    body.write_step(times[size_t(k)],
+                    {{"position", position.steps.back()}, {"displacement", u.steps.back()},
+                     {"displacement_magnitude", magnitude.steps.back()},
+                     {"von_mises", vm.steps.back()}});
+  }
+  const FieldMatrix vm_max = field(n, 1, 1100000.5);
+  body.write_envelope("von_mises", "Pa", vm_max, IndexMatrix::Constant(n, 1, 2));
+  return {"assembly.crank", n, 1,
+          {{"von_mises_max", vm_max, {}},
+           {"von_mises_max_step", FieldMatrix::Constant(n, 1, 2.0), {}},
+           position, u, magnitude, vm},
+          {}, {}};
+}
+
 // lever (TET10, series of 4 steps, static fields named like series fields, an
 // element field, a 9-component tensor, an envelope), bracket (HEX20 + TET4:
-// Mixed, series), base (HEX20, no series: in every step), mechanism histories
-// (1, 2 and 3 components over 11 times). Returns the expectations as JSON.
+// Mixed, series), assembly.crank (TET10 moving: its geometry is a series field),
+// base (HEX20, no series: in every step), mechanism histories (1, 2 and 3
+// components over 11 times). Returns the expectations as JSON.
 std::string write_sample(const std::filesystem::path& h5) {
   const std::vector<double> times = {0.0, 0.25, 0.5, 0.75};
   const int steps = int(times.size());
@@ -212,6 +264,8 @@ std::string write_sample(const std::filesystem::path& h5) {
   bb.point.push_back(bvm);
   blocks.push_back(bb);
 
+  blocks.push_back(add_moving_body(writer, times));
+
   const fem::Mesh hex = testing::single_hex20();
   BodyWriter& base = writer.add_body("base", hex);
   const FieldMatrix temperature = field(hex.node_count(), 1, 900000.25);
@@ -268,9 +322,9 @@ TEST(XdmfParaViewSample, WritesResultsAndExpectations) {
   const std::string xml = read_text(dir / "paraview_sample.xdmf");
   std::string why;
   ASSERT_TRUE(tags_balance(xml, why)) << why;
-  // A temporal collection per grid (3 bodies + mechanism), 4 steps each.
-  EXPECT_EQ(count_of(xml, R"(GridType="Collection" CollectionType="Temporal")"), 4u);
-  EXPECT_EQ(count_of(xml, "<Time Value="), 16u);
+  // A temporal collection per grid (4 bodies + mechanism), 4 steps each.
+  EXPECT_EQ(count_of(xml, R"(GridType="Collection" CollectionType="Temporal")"), 5u);
+  EXPECT_EQ(count_of(xml, "<Time Value="), 20u);
   EXPECT_NE(xml.find(R"(<Grid Name="base" GridType="Collection" CollectionType="Temporal">)"),
             std::string::npos);
   EXPECT_NE(xml.find(R"(<Attribute Name="von_mises_static" AttributeType="Scalar" Center="Node">)"),
@@ -278,7 +332,145 @@ TEST(XdmfParaViewSample, WritesResultsAndExpectations) {
   EXPECT_NE(xml.find(R"(<Attribute Name="orientation" AttributeType="Tensor" Center="Node">)"),
             std::string::npos);
   EXPECT_NE(xml.find(R"(<Topology TopologyType="Mixed" NumberOfElements="2">)"), std::string::npos);
-  EXPECT_NE(expect.find("\"total_points\": 51"), std::string::npos);  // 10 + 20 + 20 + 1
+  EXPECT_NE(expect.find("\"total_points\": 61"), std::string::npos);  // 10 + 20 + 10 + 20 + 1
+}
+
+// ---------------------------------------------------------------------------------------
+// The moving body in ParaView: every reader shows its points where the geometry field
+// puts them at each step. Runs inside the `paraview` test (scripts/test-xdmf-paraview.sh
+// sets KINETOFEM_XDMF_SAMPLE_DIR and runs XdmfParaViewSample.*); skipped elsewhere and
+// where pvpython is missing. scripts/check_xdmf_paraview.py compares the readers'
+// arrays on the sample file (which has the same body) but not their points.
+
+// pvpython (PVPYTHON, else from PATH), or "" if there is none.
+std::string find_pvpython() {
+  if (const char* given = std::getenv("PVPYTHON"); given && *given) return given;
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / "pvpython";
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return "";
+}
+
+// Per time step of one reader: the number of points and the bounds of each leaf block,
+// as "@@ <step> <points> <xmin> <xmax> <ymin> <ymax> <zmin> <zmax>" lines; anything
+// else the reader prints (warnings, errors) is noise.
+constexpr const char* kBoundsScript = R"py(
+import sys
+from paraview import simple
+reader_name, path = sys.argv[1], sys.argv[2]
+if reader_name == "XDMFReader":
+    reader = simple.XDMFReader(FileNames=[path])
+else:
+    reader = getattr(simple, reader_name)(FileName=[path])
+times = reader.TimestepValues
+times = [float(t) for t in times] if isinstance(times, (list, tuple)) or hasattr(times, "__len__") else [float(times)]
+
+def leaves(data):
+    if data.IsA("vtkDataObjectTree"):
+        pieces = data.IsA("vtkMultiPieceDataSet")
+        for i in range(data.GetNumberOfPieces() if pieces else data.GetNumberOfBlocks()):
+            child = data.GetPiece(i) if pieces else data.GetBlock(i)
+            if child is not None:
+                yield from leaves(child)
+    else:
+        yield data
+
+for k, t in enumerate(times):
+    reader.UpdatePipeline(t)
+    for block in leaves(reader.GetClientSideObject().GetOutputDataObject(0)):
+        b = block.GetBounds()
+        print("@@ %d %d %s" % (k, block.GetNumberOfPoints(), " ".join("%.17g" % v for v in b)))
+sys.stdout.flush()
+)py";
+
+struct ReaderRun {
+  std::vector<std::string> noise;
+  // Per step: points and bounds (xmin, xmax, ymin, ymax, zmin, zmax) of each block.
+  std::map<int, std::vector<std::pair<long, std::array<double, 6>>>> steps;
+  int status = -1;
+};
+
+ReaderRun run_reader(const std::string& pvpython, const std::filesystem::path& script,
+                     const std::string& reader, const std::filesystem::path& xdmf) {
+  // Without the sanitizer stage's LD_PRELOAD: only kinetofem's own programs run under it.
+  const std::string command = fmt::format("env -u LD_PRELOAD '{}' '{}' {} '{}' 2>&1", pvpython,
+                                          script.string(), reader, xdmf.string());
+  ReaderRun run;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::string output;
+  char buffer[4096];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+  run.status = ::pclose(pipe);
+  std::stringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("@@ ", 0) == 0) {
+      std::stringstream fields(line.substr(3));
+      int step = 0;
+      long points = 0;
+      std::array<double, 6> bounds{};
+      fields >> step >> points;
+      for (double& b : bounds) fields >> b;
+      run.steps[step].push_back({points, bounds});
+    } else if (line.find_first_not_of(" \t\r") != std::string::npos) {
+      run.noise.push_back(line);
+    }
+  }
+  return run;
+}
+
+TEST(XdmfParaViewSample, MovingBodyMovesInAllThreeReaders) {
+  const char* keep = std::getenv("KINETOFEM_XDMF_SAMPLE_DIR");
+  if (!keep || !*keep)
+    GTEST_SKIP() << "runs in the paraview test (ctest -L paraview), which sets KINETOFEM_XDMF_SAMPLE_DIR";
+  const std::string pvpython = find_pvpython();
+  if (pvpython.empty()) GTEST_SKIP() << "pvpython not found (set PVPYTHON)";
+  // Absolute: the Xdmf3 readers cannot find the .h5 of an .xdmf given by a bare file name.
+  const std::filesystem::path dir = std::filesystem::absolute(keep) / "moving";
+  std::filesystem::create_directories(dir);
+  const std::vector<double> times = {0.0, 0.25, 0.5, 0.75};
+  {
+    ResultsWriter writer(dir / "moving.h5", provenance());
+    add_moving_body(writer, times);
+    writer.commit();
+  }
+  const std::filesystem::path script = dir / "moving_bounds.py";
+  {
+    std::ofstream out(script, std::ios::binary | std::ios::trunc);
+    out << kBoundsScript;
+    ASSERT_TRUE(bool(out));
+  }
+  const fem::Mesh mesh = testing::single_tet10();
+  for (const char* reader : {"XDMFReader", "Xdmf3ReaderS", "Xdmf3ReaderT"}) {
+    SCOPED_TRACE(reader);
+    const ReaderRun run = run_reader(pvpython, script, reader, dir / "moving.xdmf");
+    EXPECT_EQ(run.status, 0);
+    std::string noise;
+    for (const auto& line : run.noise) noise += line + "\n";
+    EXPECT_TRUE(run.noise.empty()) << "the reader printed:\n" << noise;
+    ASSERT_EQ(run.steps.size(), times.size());
+    for (int k = 0; k < int(times.size()); ++k) {
+      SCOPED_TRACE(fmt::format("step {}", k));
+      ASSERT_EQ(run.steps.at(k).size(), 1u);  // one block
+      const auto& [points, bounds] = run.steps.at(k).front();
+      EXPECT_EQ(points, mesh.node_count());
+      const FieldMatrix p = moved(mesh, k);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(bounds[size_t(2 * c)], p.col(c).minCoeff(), 1e-12);
+        EXPECT_NEAR(bounds[size_t(2 * c + 1)], p.col(c).maxCoeff(), 1e-12);
+      }
+    }
+    // The mechanism moves: the last step's box is the first one's moved by 3 steps.
+    const auto& first = run.steps.at(0).front().second;
+    const auto& last = run.steps.at(int(times.size()) - 1).front().second;
+    for (int c = 0; c < 3; ++c)
+      for (int side = 0; side < 2; ++side)
+        EXPECT_NEAR(last[size_t(2 * c + side)] - first[size_t(2 * c + side)],
+                    (double(times.size()) - 1.0) * kMovingStep[c], 1e-12);
+  }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -317,6 +509,61 @@ TEST(XdmfText, SeriesStepIsAHyperSlabForXdmf2AndAHeavyDataSelectionForXdmf3) {
             std::string::npos);
   // An ItemType="HyperSlab" is a reference in Xdmf3: vtkXdmf3 skips it ("[None]").
   EXPECT_EQ(xml.find("ItemType="), std::string::npos);
+}
+
+TEST(XdmfText, GeometrySeriesFieldIsTheGeometryOfEachStep) {
+  TemporaryDirectory dir;
+  {
+    ResultsWriter writer(dir / "run.h5", provenance());
+    add_moving_body(writer, {0.0, 0.5, 1.0});
+    writer.commit();
+  }
+  const std::string xml = read_text(dir / "run.xdmf");
+  std::string why;
+  ASSERT_TRUE(tags_balance(xml, why)) << why;
+  // Every step's Geometry is the slice of `position` at that step, in the series
+  // attributes' DataItem (Xdmf3: the text; Xdmf2: the HyperSlab of the children).
+  EXPECT_EQ(count_of(xml, "<Geometry "), 3u);
+  EXPECT_EQ(xml.find("/mesh/nodes"), std::string::npos);
+  for (int k = 0; k < 3; ++k) {
+    const std::string geometry = fmt::format(
+        "        <Geometry GeometryType=\"XYZ\">\n"
+        "          <DataItem Type=\"HyperSlab\" Dimensions=\"10 3\" NumberType=\"Float\" Precision=\"8\" "
+        "Format=\"HDF\">run.h5:/bodies/assembly.crank/series/position|{0} 0 0:1 1 1:1 10 3:3 10 3\n"
+        "            <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">{0} 0 0 1 1 1 1 10 3</DataItem>\n"
+        "            <DataItem Dimensions=\"3 10 3\" NumberType=\"Float\" Precision=\"8\" "
+        "Format=\"HDF\">run.h5:/bodies/assembly.crank/series/position</DataItem>\n"
+        "          </DataItem>\n"
+        "        </Geometry>\n",
+        k);
+    EXPECT_EQ(count_of(xml, geometry), 1u) << "step " << k;
+  }
+  // Steps 1 and 2 include the Topology (child 2 after the Time) and the two envelope
+  // attributes (children 4, 5) from step 0, around their own Geometry.
+  EXPECT_EQ(count_of(xml, "<Topology "), 1u);
+  const std::string topology =
+      R"x(<xi:include xpointer="xpointer(/Xdmf/Domain/Grid[@Name='assembly.crank']/Grid[1]/*[position() = 2])"/>)x";
+  const std::string statics =
+      R"x(<xi:include xpointer="xpointer(/Xdmf/Domain/Grid[@Name='assembly.crank']/Grid[1]/*[position() &gt; 3 and position() &lt;= 5])"/>)x";
+  EXPECT_EQ(count_of(xml, topology), 2u);
+  EXPECT_EQ(count_of(xml, statics), 2u);
+  EXPECT_LT(xml.find(topology), xml.find("|1 0 0:1 1 1:1 10 3:3 10 3"));
+  EXPECT_EQ(count_of(xml, R"(<Attribute Name="von_mises_max" AttributeType="Scalar" Center="Node">)"), 1u);
+  // `position` is a point array too (a Vector in every step).
+  EXPECT_EQ(count_of(xml, R"(<Attribute Name="position" AttributeType="Vector" Center="Node">)"), 3u);
+}
+
+TEST(XdmfText, GeometryFieldWithoutStepsLeavesTheMeshGeometry) {
+  TemporaryDirectory dir;
+  {
+    ResultsWriter writer(dir / "run.h5", provenance());
+    writer.add_body("crank", testing::single_tet10())
+        .begin_series({{"position", "m", 3, kVectorComponents, true}});
+    writer.commit();
+  }
+  const std::string xml = read_text(dir / "run.xdmf");
+  EXPECT_NE(xml.find("run.h5:/bodies/crank/mesh/nodes</DataItem>"), std::string::npos);
+  EXPECT_EQ(xml.find("HyperSlab"), std::string::npos);
 }
 
 TEST(XdmfText, SixComponentFieldsAreMatricesNotTensor6) {

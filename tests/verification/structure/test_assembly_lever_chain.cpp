@@ -58,15 +58,17 @@ Eigen::Vector2d hand_deflection_of_h(const mech::ManipulatorDefinition& def, con
   return uA + dtheta_arm * perp(H - A);
 }
 
-AssemblyOptions options_with(double kd, bool parts) {
+AssemblyOptions options_with(double kd, bool parts, BoreCoupling coupling = BoreCoupling::Distributing) {
   AssemblyOptions o;
+  o.coupling = coupling;
   o.chains = {{"chain", kChainEA}};
   if (!std::isinf(kd)) o.drives = {{"lever_drive", kd}};
   o.points = {{"H", "arm", "H", parts ? "x0" : ""}};
   return o;
 }
 
-void expect_hand_formula(bool with_parts, double dphi, double kd, double tolerance) {
+void expect_hand_formula(bool with_parts, double dphi, double kd, double tolerance,
+                         BoreCoupling coupling = BoreCoupling::Distributing) {
   const mech::ManipulatorDefinition def = test::lever_chain_definition();
   mech::MultibodyModel model = mech::make_manipulator_model(def);
   std::vector<pipeline::Part> parts;
@@ -75,15 +77,15 @@ void expect_hand_formula(bool with_parts, double dphi, double kd, double toleran
     pipeline::apply_mass_properties(model, parts, Log::quiet());
   }
   const mech::Frame frame = pipeline::solve_static_pose(model, {dphi});
-  ElasticAssembly assembly(parts, model, options_with(kd, with_parts));
+  ElasticAssembly assembly(parts, model, options_with(kd, with_parts, coupling));
   const PoseSolution pose = assembly.solve(frame);
   const Eigen::Vector2d expected = hand_deflection_of_h(def, frame, kd);
   const Eigen::Vector3d u = pose.point("H").displacement_m;
   const double error = (u.head<2>() - expected).norm() / expected.norm();
   std::printf(
-      "  %s, dphi = %.0f deg, k_d = %g N m/rad: |u_H| %.6e m (hand %.6e m), error %.2e; chain tension %.3f N "
+      "  %s (%s), dphi = %.0f deg, k_d = %g N m/rad: |u_H| %.6e m (hand %.6e m), error %.2e; chain tension %.3f N "
       "(multibody %.3f N)\n",
-      with_parts ? "parts E x 1e6" : "rigid bodies", dphi / test::kDeg, kd, u.head<2>().norm(), expected.norm(), error,
+      with_parts ? "parts E x 1e6" : "rigid bodies", name_of(coupling), dphi / test::kDeg, kd, u.head<2>().norm(), expected.norm(), error,
       pose.chain("chain").tension_n, frame.chains[0].tension_N);
   EXPECT_LT(error, tolerance);
   EXPECT_LT(std::abs(u.z()), tolerance * expected.norm());
@@ -104,6 +106,13 @@ TEST(ElasticAssemblyLeverChain, StiffPartsDesignPoseMatchTheHandFormula) {
 
 TEST(ElasticAssemblyLeverChain, StiffPartsTurnedPoseWithCompliantDriveMatchTheHandFormula) {
   expect_hand_formula(true, 20 * test::kDeg, 2e4, 1e-6);
+}
+
+// The same with kinematic (rigid-bore) couplings: with parts this stiff the
+// coupling does not matter, so the hand formula holds to the same 1e-6.
+TEST(ElasticAssemblyLeverChain, StiffPartsWithRigidBoresMatchTheHandFormula) {
+  expect_hand_formula(true, 0.0, kRigid, 1e-6, BoreCoupling::RigidBore);
+  expect_hand_formula(true, 20 * test::kDeg, 2e4, 1e-6, BoreCoupling::RigidBore);
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ void expect_split_adds_up(const PointResult& p, const char* what) {
   EXPECT_GT(p.compliance_m_per_n(1, 1), 0.0);
 }
 
-TEST(ElasticAssemblyUnitLoad, LeverChainContributionsAddUpToTheDeflectionOfH) {
+void expect_lever_chain_split_adds_up(BoreCoupling coupling) {
   const mech::ManipulatorDefinition def = test::lever_chain_definition();
   mech::MultibodyModel model = mech::make_manipulator_model(def);
   std::vector<pipeline::Part> parts = test::lever_chain_parts(def, test::steel());
@@ -70,6 +70,7 @@ TEST(ElasticAssemblyUnitLoad, LeverChainContributionsAddUpToTheDeflectionOfH) {
   o.chains = {{"chain", kChainEA}};
   o.drives = {{"lever_drive", 2e4}};
   o.points = {{"H", "arm", "H", "x0"}};
+  o.coupling = coupling;
   ElasticAssembly assembly(parts, model, o);
   for (const double dphi : {0.0, 20 * test::kDeg}) {
     const PoseSolution pose = assembly.solve(pipeline::solve_static_pose(model, {dphi}));
@@ -81,6 +82,14 @@ TEST(ElasticAssemblyUnitLoad, LeverChainContributionsAddUpToTheDeflectionOfH) {
     EXPECT_EQ(pose.indeterminacy.in_plane, 0);
     EXPECT_EQ(pose.indeterminacy.out_of_plane, 0);
   }
+}
+
+TEST(ElasticAssemblyUnitLoad, LeverChainContributionsAddUpToTheDeflectionOfH) {
+  expect_lever_chain_split_adds_up(BoreCoupling::Distributing);
+}
+
+TEST(ElasticAssemblyUnitLoad, LeverChainContributionsAddUpWithRigidBores) {
+  expect_lever_chain_split_adds_up(BoreCoupling::RigidBore);
 }
 
 TEST(ElasticAssemblyUnitLoad, RigidLeverChainComplianceOfHIsTheChainsByHand) {

@@ -14,7 +14,7 @@
 // FE parts ([[part]], [[face_set]] and the face keys of the tables that act
 // on a part; app/part_keys.hpp): every moving body may carry a parametric link
 // or a CAD part; the run then computes its stress over the motion through the
-// motion-to-stress pipeline (pipeline/motion_to_stress.hpp), the same as the
+// motion-to-stress pipeline (driver/motion_to_stress.hpp), the same as the
 // manipulator cases.
 //
 // Output: results/<name>.h5 (+ .xdmf) with the histories of every body, joint,
@@ -23,6 +23,7 @@
 // and chain tension, the parts' peak stresses, and the run's checks
 // (mech::Results::format_checks()).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
+#include "kinetofem/structure/assembly_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -49,6 +51,7 @@ struct LinkageRun {
   double min_chain_tension_n = 0.0, max_chain_tension_n = 0.0;  // 0 when the model has no chain
   double max_abs_drive_effort = 0.0;                           // over all drives (N m or N)
   std::vector<pipeline::PartSummary> parts;                    // one per [[part]]: stress over the motion
+  std::optional<structure::AssemblySummary> assembly;          // assembly.enabled
 };
 
 LinkageRun run_linkage(const CaseFile& case_file, const RunOptions& options);

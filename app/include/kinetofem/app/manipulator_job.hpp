@@ -8,12 +8,14 @@
 // SPEC §3, and one HDF5 + XDMF results file. The case is a preset of the
 // general motion-to-stress pipeline (pipeline/manipulator_preset.hpp): this
 // job reads the keys and calls the pipeline's driver.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/jobs.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
+#include "kinetofem/structure/assembly_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -28,6 +30,8 @@ struct ManipulatorSummary {
   double max_von_mises_pa = 0, max_displacement_m = 0;              // over links and motion
   double static_max_von_mises_pa = 0, static_max_displacement_m = 0;  // static pose study
   double max_drive_torque_nm = 0, min_chain_tension_n = 0, max_chain_tension_n = 0;
+  // The elastic assembly (assembly.enabled): total deformation, H's deflection.
+  std::optional<structure::AssemblySummary> assembly;
   std::filesystem::path results_file;
   double meshing_seconds = 0, dynamics_seconds = 0, total_seconds = 0;
 };

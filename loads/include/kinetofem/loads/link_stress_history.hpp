@@ -70,4 +70,12 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& supported_model, const
                                       const LinkStressOptions& options = {},
                                       const StepCallback& on_step = {});
 
+// The same on a factorization made before (of the supported model, which it
+// refers to), e.g. one shared with the elastic assembly, so that a part is
+// factorized once for both. options.solver is not used.
+LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& factorized, const LinkLoads& loads,
+                                      const std::vector<mech::Frame>& frames, const Log& log,
+                                      const LinkStressOptions& options = {},
+                                      const StepCallback& on_step = {});
+
 }  // namespace kinetofem::loads

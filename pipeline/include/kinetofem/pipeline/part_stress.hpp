@@ -11,6 +11,7 @@
 //   envelope von_mises (max), displacement_magnitude (max), with their step
 // The part is held by a statically determinate 3-2-1 support whose reactions
 // are checked to vanish (the loads are self-equilibrated).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,12 +44,31 @@ struct PartSummary {
   std::string solver_summary;
 };
 
-// `part.model` without supports (they are added here). Writes the part's body
+// A part's stiffness with its statically determinate 3-2-1 support
+// (fem::three_two_one_support over all nodes), assembled and factorized once
+// for the whole motion: the per-part stress stage below and the elastic
+// assembly (structure/) share it, so a part is factorized once for both.
+// Neither copied nor moved (the analysis refers to the model).
+class SupportedPart {
+ public:
+  SupportedPart(const Part& part, const fem::StaticSolverOptions& solver, const Log& log);
+  SupportedPart(const SupportedPart&) = delete;
+  SupportedPart& operator=(const SupportedPart&) = delete;
+  const fem::FeModel& model() const { return model_; }
+  fem::LinearStaticAnalysis& analysis() const { return *analysis_; }
+
+ private:
+  fem::FeModel model_;
+  std::unique_ptr<fem::LinearStaticAnalysis> analysis_;
+};
+
+// `part.model` without supports (they are added here; or `factorized`, the
+// part's SupportedPart made before, is used). Writes the part's body
 // into `writer`; prints the peak line. Throws Error naming the part and time
 // when the loads are out of equilibrium or the support carries load.
 PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyModel& model,
                                      const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
                                      post::ResultsWriter& writer, const loads::LinkStressOptions& options,
-                                     const Log& log);
+                                     const Log& log, const SupportedPart* factorized = nullptr);
 
 }  // namespace kinetofem::pipeline

@@ -61,6 +61,9 @@ class ResultsFile {
   std::vector<double> series_times(const std::string& body) const;  // s; empty: no series
   // One output time of a series field: N x c.
   FieldData read_step(const std::string& body, const std::string& field, fem::Index step) const;
+  // The series field that is the body's per-step geometry (N x 3, m: the nodes' coordinates at
+  // each output time; SeriesField::geometry, attribute xdmf_geometry), "" if it has none.
+  std::string geometry_field(const std::string& body) const;
 
   std::vector<std::string> envelopes(const std::string& body) const;
   EnvelopeData read_envelope(const std::string& body, const std::string& field) const;

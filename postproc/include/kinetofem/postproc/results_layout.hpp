@@ -16,7 +16,9 @@
 //   /bodies/<body>/static/<field>                      (N, c)   nodal fields
 //   /bodies/<body>/element_fields/<field>              (E, c)   one row per element
 //   /bodies/<body>/series/time                         (T)      s
-//   /bodies/<body>/series/<field>                      (T, N, c) chunked per time step
+//   /bodies/<body>/series/<field>                      (T, N, c) chunked per time step;
+//                                                      attr xdmf_geometry = 1 on the (T, N, 3)
+//                                                      field that is the per-step geometry
 //   /bodies/<body>/envelopes/<field>/value, /step      (N, c), step: index into series/time
 //   /mechanism/time                                    (T_m)    s
 //   /mechanism/<quantity>                              (T_m, c)
@@ -67,6 +69,9 @@ inline constexpr const char* kEnvelopeValue = "value";
 inline constexpr const char* kEnvelopeStep = "step";
 inline constexpr const char* kMechanism = "mechanism";
 inline constexpr const char* kDimensionless = "1";
+// Attribute (int64, 1) of the series dataset whose values are also the body's per-step geometry
+// (SeriesField::geometry).
+inline constexpr const char* kXdmfGeometry = "xdmf_geometry";
 
 // "block_<i>", the group of element block i (blocks keep their order).
 std::string block_name(size_t index);

@@ -62,6 +62,12 @@ struct SeriesField {
   std::string units;
   int components = 1;
   std::vector<std::string> component_names = {};
+  // This N x 3 field, in m, is also the geometry of its step in the XDMF file; at most one per
+  // body. Its values are the nodes' coordinates at that output time (e.g. the world coordinates
+  // of the rigid configuration), so ParaView shows the body moving as it steps through time;
+  // the body's mesh/nodes stay its reference (body-frame) coordinates. Recorded as the
+  // attribute xdmf_geometry = 1 on the series dataset (ResultsFile::geometry_field).
+  bool geometry = false;
 };
 
 // A field's values for one call of write_step. Holds a reference (an Eigen::Ref)
@@ -92,7 +98,9 @@ class BodyWriter {
                            const Eigen::Ref<const FieldMatrix>& values,
                            const std::vector<std::string>& component_names = {});
 
-  // Declares the fields of the body's time series (once per body).
+  // Declares the fields of the body's time series (once per body). Throws Error naming the
+  // body and field for a field marked `geometry` that does not have 3 components, or for a
+  // second such field.
   void begin_series(const std::vector<SeriesField>& fields);
   // Writes output time `time_s` (s, strictly increasing): every declared field,
   // each N x c. Returns the step index k (0, 1, ...).

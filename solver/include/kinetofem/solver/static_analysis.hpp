@@ -63,6 +63,7 @@ class LinearStaticAnalysis {
                                const std::vector<Index>& nodes) const;
 
   const DofMap& dofs() const { return dofs_; }
+  const FeModel& model() const { return model_; }
   // CHOLMOD's statistics; on the iterative path only the symbolic analysis
   // (predicted factor size) when Auto ran it, else empty.
   const CholmodStatistics& solver_statistics() const { return solver_.statistics(); }

@@ -94,7 +94,19 @@ struct TrackedPoint {
   std::string face_set;          // elastic part: the face set whose coupling carries the point
 };
 
+// How an interface's reference point is tied to its face set on an elastic
+// part. Distributing (RBE3-like, fem::DistributingCoupling): the reference
+// moves with the face's weighted mean motion and the face deforms freely; it
+// loads the part by statically equivalent forces only. RigidBore
+// (kinematic): every node of the face moves rigidly with the reference, as
+// under a pin pressed into the bore; stiffer locally. docs/elastic_assembly.md
+// says why Distributing is the default and how much the choice moves the result.
+enum class BoreCoupling { Distributing, RigidBore };
+// "distributing", "rigid_bore".
+const char* name_of(BoreCoupling coupling);
+
 struct AssemblyOptions {
+  BoreCoupling coupling = BoreCoupling::Distributing;
   std::vector<ChainMember> chains;
   std::vector<DriveHold> drives;
   std::vector<TrackedPoint> points;
@@ -244,8 +256,12 @@ class ElasticAssembly {
   // drive acting on a part that names no face set for it, a prismatic joint,
   // a chain without its EA or hinged off the ground, a displacement drive,
   // an option naming an unknown chain, drive, body or point.
+  // `factorized`: empty, or per part (in order) a factorization of the part
+  // with its 3-2-1 support made before (pipeline::SupportedPart), reused
+  // instead of a new one (nullptr: made here); it must outlive the assembly.
   ElasticAssembly(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
-                  AssemblyOptions options = {}, const Log& log = Log::quiet());
+                  AssemblyOptions options = {}, const Log& log = Log::quiet(),
+                  const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
   ~ElasticAssembly();
   ElasticAssembly(ElasticAssembly&&) noexcept;
   ElasticAssembly& operator=(ElasticAssembly&&) noexcept;

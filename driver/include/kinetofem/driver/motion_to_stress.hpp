@@ -1,8 +1,9 @@
 #pragma once
 // The motion-to-stress pipeline for any planar linkage whose bodies may carry
-// FE parts: the driver that runs the stages in order. The SPEC §1/§2
-// manipulators are presets of it (app/src/manipulator_job.cpp builds their
-// MotionStressCase from their keys), the `linkage` case type another.
+// FE parts: the driver that runs the stages (pipeline/, structure/) in
+// order. The SPEC §1/§2 manipulators are presets of it
+// (app/src/manipulator_job.cpp builds their MotionStressCase from their
+// keys), the `linkage` case type another.
 //
 //   run_motion_to_stress(case):
 //     1. check_motion_before_meshing   the motion is possible (nominal masses)
@@ -14,8 +15,11 @@
 //     6. analyse_part_over_motion      per part: loads, one factorization,
 //                                      block solves, stress, envelopes
 //     7. write_mechanism_histories     bodies, joints, drives, chains, points
-//     8. commit the results file       atomically (.h5 + .xdmf)
-// A linkage without parts runs steps 1, 4, 5, 7 and 8.
+//     8. analyse_assembly_over_motion  the linkage as one elastic structure
+//                                      (when asked): total deformation, the
+//                                      tracked points' deflection and split
+//     9. commit the results file       atomically (.h5 + .xdmf)
+// A linkage without parts runs steps 1, 4, 5, 7 and 9.
 //
 // Every Error of a stage is rethrown once with the case and the stage named
 // ("case.toml: the motion cannot be run: singular position at t = ...").
@@ -34,8 +38,14 @@
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/postproc/provenance.hpp"
+#include "kinetofem/structure/assembly_over_motion.hpp"
 
-namespace kinetofem::pipeline {
+namespace kinetofem::driver {
+
+using pipeline::DynamicsSettings;
+using pipeline::PartSpec;
+using pipeline::PartSummary;
+using pipeline::TrackedPoint;
 
 struct MotionStressCase {
   std::string label;                 // for messages: the case file
@@ -50,6 +60,9 @@ struct MotionStressCase {
   meshes::MeshOptions mesh;
   loads::LinkStressOptions stress;
   std::vector<TrackedPoint> tracked_points;  // written as point.<body>.<point> paths
+  // The elastic assembly (step 8); empty: not run. Its chains' EA, drives'
+  // stiffness and points (e.g. the gripper point H with its face set).
+  std::optional<structure::AssemblyOptions> assembly;
   std::filesystem::path results_file;        // <dir>/<name>.h5 (+ .xdmf)
   post::Provenance provenance;
 };
@@ -59,10 +72,11 @@ struct MotionStressRun {
   mech::Results motion;
   std::optional<mech::Frame> static_pose;
   std::vector<PartSummary> parts;
+  std::optional<structure::AssemblySummary> assembly;
   std::filesystem::path results_file;
   double meshing_seconds = 0.0, dynamics_seconds = 0.0;
 };
 
 MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log);
 
-}  // namespace kinetofem::pipeline
+}  // namespace kinetofem::driver

@@ -1,9 +1,13 @@
-#include "kinetofem/pipeline/motion_to_stress.hpp"
+#include "kinetofem/driver/motion_to_stress.hpp"
+
+#include <memory>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
-namespace kinetofem::pipeline {
+namespace kinetofem::driver {
+
+using namespace kinetofem::pipeline;  // the stages
 
 namespace {
 
@@ -71,18 +75,36 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     if (ec) fail("{}: cannot create the output directory: {}", c.results_file.parent_path().string(), ec.message());
   }
   post::ResultsWriter writer(c.results_file, c.provenance);
+  // One factorization per part for the whole motion, shared by the per-part
+  // stress and the elastic assembly.
+  std::vector<std::unique_ptr<SupportedPart>> factorized;
   in_stage(c, "the stress of the parts cannot be computed or written", [&] {
-    for (const auto& part : parts)
-      run.parts.push_back(
-          analyse_part_over_motion(part, run.model, run.motion.frames, run.static_pose, writer, c.stress, log));
+    for (const auto& part : parts) {
+      factorized.push_back(std::make_unique<SupportedPart>(part, c.stress.solver, log));
+      run.parts.push_back(analyse_part_over_motion(part, run.model, run.motion.frames, run.static_pose, writer,
+                                                   c.stress, log, factorized.back().get()));
+      if (!c.assembly) factorized.back().reset();  // no second use: free the factor now
+    }
     return 0;
   });
   in_stage(c, "the histories cannot be written", [&] {
     write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
     return 0;
   });
+  if (c.assembly) {
+    log.info("elastic assembly: {} parts, {} output times{}", parts.size(), run.motion.frames.size(),
+             run.static_pose ? " + the static study" : "");
+    run.assembly = in_stage(c, "the elastic assembly cannot be solved or written", [&] {
+      std::vector<fem::LinearStaticAnalysis*> shared;
+      for (const auto& f : factorized) shared.push_back(&f->analysis());
+      structure::AssemblyOptions options = *c.assembly;
+      options.solver = c.stress.solver;
+      return structure::analyse_assembly_over_motion(parts, run.model, run.motion.frames, run.static_pose, writer,
+                                                     options, log, shared);
+    });
+  }
   writer.commit();
   return run;
 }
 
-}  // namespace kinetofem::pipeline
+}  // namespace kinetofem::driver

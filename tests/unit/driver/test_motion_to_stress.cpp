@@ -1,4 +1,4 @@
-// The driver of the motion-to-stress pipeline (pipeline/motion_to_stress.hpp):
+// The driver of the motion-to-stress pipeline (driver/motion_to_stress.hpp):
 // the stages in order, what it writes, and its errors (case and stage named).
 #include <gtest/gtest.h>
 
@@ -9,13 +9,15 @@
 #include "kinetofem/mechanisms/four_bar.hpp"
 #include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
-#include "kinetofem/pipeline/motion_to_stress.hpp"
+#include "kinetofem/driver/motion_to_stress.hpp"
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/verification/spec2_four_bar.hpp"
-#include "pipeline_fixtures.hpp"
+#include "../pipeline/pipeline_fixtures.hpp"
 
-namespace kinetofem::pipeline {
+namespace kinetofem::driver {
 namespace {
+
+using namespace kinetofem::pipeline;  // the stages and their types
 
 namespace fs = std::filesystem;
 using test::error_of;
@@ -201,4 +203,4 @@ TEST(RunMotionToStress, ResultsFileWithoutDirectoryGoesToTheWorkingDirectory) {
 }
 
 }  // namespace
-}  // namespace kinetofem::pipeline
+}  // namespace kinetofem::driver

@@ -1,0 +1,153 @@
+#include "kinetofem/app/assembly_keys.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::app {
+
+namespace {
+
+using Type = KeySpec::Type;
+
+void add_common(std::vector<KeySpec>& s, bool enabled_by_default, const char* enabled_doc) {
+  s.push_back({.path = "assembly.enabled", .type = Type::Boolean, .default_number = enabled_by_default ? 1.0 : 0.0,
+               .doc = enabled_doc});
+  s.push_back({.path = "assembly.coupling", .type = Type::String, .default_text = "distributing",
+               .allowed = {"distributing", "rigid_bore"},
+               .doc = "how a joint's pin holds its bore: 'distributing' (RBE3-like, the bore deforms freely) or "
+                      "'rigid_bore' (kinematic: the bore moves rigidly with the pin)"});
+}
+
+structure::BoreCoupling read_coupling(const CaseFile& c) {
+  return c.text_value("assembly.coupling") == "rigid_bore" ? structure::BoreCoupling::RigidBore
+                                                           : structure::BoreCoupling::Distributing;
+}
+
+double chain_ea(const CaseFile& c, const std::string& ea_key, const std::string& strands_key, std::size_t k) {
+  const double ea = c.number(ea_key, k);
+  require(std::isfinite(ea), "{} = {}: the chain's axial stiffness must be a finite number of N", c.where(ea_key, k), ea);
+  return ea * double(c.integer(strands_key, k));
+}
+
+}  // namespace
+
+void add_manipulator_assembly_keys(std::vector<KeySpec>& s) {
+  add_common(s, true,
+             "also solve the manipulator as one elastic structure held by its frame: total deformation, the gripper "
+             "point H's deflection, its split and compliance");
+  s.push_back({.path = "assembly.chain_ea_per_strand_n", .type = Type::Number, .unit = "N",
+               .default_number = kDefaultManipulatorChain.ea_per_strand_n, .min = 0, .min_exclusive = true,
+               .doc = "lever-chain: axial stiffness EA of one chain strand (default: ISO 606 08B-1, see the case README)"});
+  s.push_back({.path = "assembly.chain_strands", .type = Type::Integer, .default_number = 1, .min = 1, .max = 3,
+               .doc = "lever-chain: strands of the chain (simplex 1, duplex 2, triplex 3); EA = strands x per strand"});
+  s.push_back({.path = "assembly.drive_stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
+               .min_exclusive = true,
+               .doc = "torsional stiffness of the lever's drive train (motor, gearbox, coupling); absent: rigid"});
+}
+
+std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFile& c, const std::string& chain_name,
+                                                                     const std::string& drive_name,
+                                                                     const std::string& arm_body,
+                                                                     const std::string& gripper_face) {
+  if (!c.boolean("assembly.enabled")) return std::nullopt;
+  structure::AssemblyOptions o;
+  o.coupling = read_coupling(c);
+  if (!chain_name.empty()) {
+    o.chains.push_back({chain_name, chain_ea(c, "assembly.chain_ea_per_strand_n", "assembly.chain_strands", 0)});
+  } else {
+    for (const char* key : {"assembly.chain_ea_per_strand_n", "assembly.chain_strands"})
+      require(!c.has(key), "{}: the lever manipulator has no chain (this key is for mechanism.type = \"lever_chain\")",
+              c.where(key));
+  }
+  if (c.has("assembly.drive_stiffness_n_m_per_rad")) {
+    const double k = c.number("assembly.drive_stiffness_n_m_per_rad");
+    require(std::isfinite(k), "{} = {}: the drive's stiffness must be a finite number of N*m/rad (leave the key out "
+            "for a rigid drive)", c.where("assembly.drive_stiffness_n_m_per_rad"), k);
+    o.drives.push_back({drive_name, k});
+  }
+  o.points.push_back({"H", arm_body, "H", gripper_face});
+  return o;
+}
+
+void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
+  add_common(s, false,
+             "also solve the linkage as one elastic structure held by the ground (needs [[part]]s; revolute, fixed "
+             "and chain joints, angle drives)");
+  s.push_back({.path = "joint[].ea_per_strand_n", .type = Type::Number, .unit = "N", .min = 0, .min_exclusive = true,
+               .doc = "chain, elastic assembly: axial stiffness EA of one strand (required when the assembly is on)"});
+  s.push_back({.path = "joint[].strands", .type = Type::Integer, .default_number = 1, .min = 1, .max = 3,
+               .doc = "chain, elastic assembly: number of strands; EA = strands x per strand"});
+  s.push_back({.path = "motion_drive[].stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
+               .min_exclusive = true,
+               .doc = "angle drive, elastic assembly: torsional stiffness of the drive train; absent: rigid"});
+  s.push_back({.path = "assembly_point", .type = Type::TableArray,
+               .doc = "points whose elastic displacement, split and compliance the assembly reports (e.g. a gripper point)"});
+  s.push_back({.path = "assembly_point[].name", .type = Type::String, .doc = "name (histories assembly.point.<name>.*)", .required = true});
+  s.push_back({.path = "assembly_point[].body", .type = Type::String, .doc = "moving body", .required = true});
+  s.push_back({.path = "assembly_point[].point", .type = Type::String, .default_text = "origin", .doc = "point of the body"});
+  s.push_back({.path = "assembly_point[].face", .type = Type::String,
+               .doc = "body with a part: the face set whose distributing coupling carries the point"});
+}
+
+std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& c, const mech::MultibodyModel& model,
+                                                                 const std::vector<std::string>& bodies_with_parts) {
+  const bool enabled = c.boolean("assembly.enabled");
+  // Stiffness keys without an assembly, or on the wrong joint or drive, are
+  // mistakes a user wants to hear about.
+  for (std::size_t k = 0; k < c.count("joint"); ++k) {
+    const std::string type = c.text_value("joint[].type", k);
+    for (const char* key : {"joint[].ea_per_strand_n", "joint[].strands"})
+      if (c.has(key, k)) {
+        require(type == "chain", "{}: only a chain joint has an axial stiffness (this joint is {})", c.where(key, k), type);
+        require(enabled, "{}: set assembly.enabled = true to use it (the chain's stiffness only enters the elastic assembly)",
+                c.where(key, k));
+      }
+  }
+  for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
+    if (c.has("motion_drive[].stiffness_n_m_per_rad", k))
+      require(enabled, "{}: set assembly.enabled = true to use it (the drive's stiffness only enters the elastic assembly)",
+              c.where("motion_drive[].stiffness_n_m_per_rad", k));
+  if (!enabled) {
+    require(c.count("assembly_point") == 0, "{}: [[assembly_point]] needs assembly.enabled = true", c.where("assembly_point[].name", 0));
+    return std::nullopt;
+  }
+  require(!bodies_with_parts.empty(),
+          "{}: assembly.enabled = true, but no body has a [[part]]: the elastic assembly needs at least one FE part",
+          c.where("assembly.enabled"));
+  structure::AssemblyOptions o;
+  o.coupling = read_coupling(c);
+  for (std::size_t k = 0; k < c.count("joint"); ++k) {
+    if (c.text_value("joint[].type", k) != "chain") continue;
+    require(c.has("joint[].ea_per_strand_n", k),
+            "{}: chain '{}' needs ea_per_strand_n (its axial stiffness EA, N) for the elastic assembly", c.where("joint[].name", k),
+            c.text_value("joint[].name", k));
+    o.chains.push_back({c.text_value("joint[].name", k), chain_ea(c, "joint[].ea_per_strand_n", "joint[].strands", k)});
+  }
+  for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
+    if (c.has("motion_drive[].stiffness_n_m_per_rad", k)) {
+      const double stiffness = c.number("motion_drive[].stiffness_n_m_per_rad", k);
+      require(std::isfinite(stiffness), "{} = {}: the drive's stiffness must be a finite number of N*m/rad",
+              c.where("motion_drive[].stiffness_n_m_per_rad", k), stiffness);
+      o.drives.push_back({c.text_value("motion_drive[].name", k), stiffness});
+    }
+  for (std::size_t k = 0; k < c.count("assembly_point"); ++k) {
+    structure::TrackedPoint p{c.text_value("assembly_point[].name", k), c.text_value("assembly_point[].body", k),
+                              c.text_value("assembly_point[].point", k),
+                              c.has("assembly_point[].face", k) ? c.text_value("assembly_point[].face", k) : std::string()};
+    const auto body = std::find_if(model.bodies.begin(), model.bodies.end(), [&](const mech::Body& b) { return b.name == p.body; });
+    require(body != model.bodies.end(), "{} = \"{}\": no [[body]] has this name", c.where("assembly_point[].body", k), p.body);
+    require(!body->fixed, "{} = \"{}\": the ground does not move; name a moving body", c.where("assembly_point[].body", k), p.body);
+    require(p.point == "origin" || body->points.contains(p.point), "{} = \"{}\": body '{}' has no such point",
+            c.where("assembly_point[].point", k), p.point, p.body);
+    const bool on_part = std::find(bodies_with_parts.begin(), bodies_with_parts.end(), p.body) != bodies_with_parts.end();
+    require(!on_part || !p.face_set.empty(), "{}: point '{}' is on body '{}', which has a part: name the face set that carries it (face = \"...\")",
+            c.where("assembly_point[].name", k), p.name, p.body);
+    require(on_part || p.face_set.empty(), "{}: body '{}' has no part, so the point needs no face", c.where("assembly_point[].face", k), p.body);
+    o.points.push_back(p);
+  }
+  return o;
+}
+
+}  // namespace kinetofem::app

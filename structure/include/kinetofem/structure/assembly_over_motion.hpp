@@ -1,0 +1,97 @@
+#pragma once
+// Stage "the elastic assembly over the motion": the linkage as ONE
+// linear-elastic structure held by the ground (structure/elastic_assembly.hpp)
+// at every output time and, when given, in the static pose study, with one
+// factorization per part for all of them. Quasi-static: the elastic
+// deflection does not feed back into the motion (the frames come from the
+// rigid-body dynamics). docs/elastic_assembly.md.
+//
+// Written into the results file (names: docs/results.md):
+//   body assembly.<b> per elastic part, series (one step per output time):
+//     position               m, N x 3  world coordinates of the rigid configuration
+//                                      (the XDMF geometry of the step: the mechanism moves)
+//     displacement           m, N x 3  world axes, from the rigid configuration
+//     displacement_magnitude m, N x 1
+//     von_mises              Pa, N x 1
+//   envelopes displacement_magnitude, von_mises (max over the motion);
+//   static study: static_position, static_displacement,
+//     static_displacement_magnitude, static_von_mises;
+//   mechanism histories:
+//     assembly.max_displacement                         m     max |u| over the parts' nodes
+//     assembly.point.<P>.displacement                   m     x, y, z (world)
+//     assembly.point.<P>.displacement_magnitude         m
+//     assembly.point.<P>.rotation                       rad   x, y, z
+//     assembly.point.<P>.from.<contributor>             m     x, y, z; contributor part.<b>,
+//                                                             chain.<c>, drive.<d>; they add up
+//     assembly.point.<P>.compliance                     m/N   xx xy xz yx yy yz zx zy zz
+//     assembly.chain.<c>.tension, .elongation           N, m
+//     assembly.drive.<d>.moment, .twist                 N*m, rad
+// The writer must have its mechanism time set (write_mechanism_histories) to
+// the output times of `motion`.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/mechanisms/multibody/model.hpp"
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
+#include "kinetofem/structure/elastic_assembly.hpp"
+
+namespace kinetofem::structure {
+
+// A tracked point's extremes (SI; times in s).
+struct PointSummary {
+  std::string name, body;
+  double max_displacement_m = 0.0, max_displacement_time_s = 0.0;
+  Eigen::Vector3d displacement_at_max_m = Eigen::Vector3d::Zero();
+  std::vector<PointContribution> contributions_at_max;  // at that time
+  // Largest and smallest eigenvalue of the in-plane (x, y) compliance over
+  // the motion, m/N, with their times.
+  double max_compliance_m_per_n = 0.0, max_compliance_time_s = 0.0;
+  double min_compliance_m_per_n = 0.0, min_compliance_time_s = 0.0;
+  bool has_static_study = false;
+  Eigen::Vector3d static_displacement_m = Eigen::Vector3d::Zero();
+  std::vector<PointContribution> static_contributions;
+  Eigen::Matrix3d static_compliance_m_per_n = Eigen::Matrix3d::Zero();
+};
+
+struct AssemblySummary {
+  // Total deformation: max |u| over every part's nodes (world, from the rigid
+  // configuration) over the motion, and in the static study.
+  double max_displacement_m = 0.0, max_displacement_time_s = 0.0;
+  std::string max_displacement_body;
+  bool has_static_study = false;
+  double static_max_displacement_m = 0.0;
+  std::string static_max_displacement_body;
+  std::vector<PointSummary> points;
+  struct PartPeak {
+    std::string body;
+    double max_von_mises_pa = 0.0, static_von_mises_pa = 0.0;
+  };
+  std::vector<PartPeak> parts;
+  Indeterminacy indeterminacy;  // of the first pose (the same at every regular pose)
+  // |assembly chain tension - the dynamics'| / the dynamics', worst over the
+  // poses (0 for determinate linkages up to round-off).
+  double worst_chain_mismatch = 0.0;
+  AssemblyStatistics statistics;
+};
+
+// `factorized`: the parts' factorizations shared with the per-part stage
+// (ElasticAssembly). Throws Error naming the part, joint, drive or time (elastic_assembly.hpp),
+// and when a statically determinate linkage's chain force differs from the
+// dynamics' tension by more than 1e-6 of it.
+AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& parts,
+                                             const mech::MultibodyModel& model,
+                                             const std::vector<mech::Frame>& motion,
+                                             const std::optional<mech::Frame>& static_pose,
+                                             post::ResultsWriter& writer, const AssemblyOptions& options,
+                                             const Log& log,
+                                             const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
+
+// One line per tracked point, the total deformation and the indeterminacy,
+// in mm, um/N and %, for the run's summary.
+std::string format_assembly_summary(const AssemblySummary& summary);
+
+}  // namespace kinetofem::structure

@@ -1,0 +1,307 @@
+#include "kinetofem/structure/assembly_over_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
+
+namespace kinetofem::structure {
+
+namespace {
+
+constexpr size_t kPosesPerBlock = 32;  // fields of one block in memory at a time
+
+// World coordinates of a part's nodes in the rigid configuration of a frame.
+post::FieldMatrix world_position(const fem::Mesh& mesh, const mech::BodyFrame& body) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(body.q.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d origin(body.q.x(), body.q.y(), 0.0);
+  post::FieldMatrix X(mesh.node_count(), 3);
+  for (fem::Index i = 0; i < mesh.node_count(); ++i) X.row(i) = (R * mesh.nodes.row(i).transpose() + origin).transpose();
+  return X;
+}
+
+int body_index(const mech::MultibodyModel& model, const std::string& name) {
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    if (model.bodies[b].name == name) return int(b);
+  fail("elastic assembly: no body '{}'", name);
+}
+
+// Largest and smallest eigenvalue of the in-plane block of a compliance.
+Eigen::Vector2d in_plane_eigenvalues(const Eigen::Matrix3d& C) {
+  const Eigen::Matrix2d S = 0.5 * (C.topLeftCorner<2, 2>() + C.topLeftCorner<2, 2>().transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(S, Eigen::EigenvaluesOnly);
+  return {eig.eigenvalues()(1), eig.eigenvalues()(0)};
+}
+
+struct BodyEnvelope {
+  Eigen::VectorXd max_u, max_vm;
+  post::IndexMatrix step_u, step_vm;
+};
+
+}  // namespace
+
+AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& parts,
+                                             const mech::MultibodyModel& model,
+                                             const std::vector<mech::Frame>& motion,
+                                             const std::optional<mech::Frame>& static_pose,
+                                             post::ResultsWriter& writer, const AssemblyOptions& options,
+                                             const Log& log,
+                                             const std::vector<fem::LinearStaticAnalysis*>& factorized) {
+  require(!motion.empty(), "elastic assembly: no output times to analyse");
+  require(!parts.empty(),
+          "elastic assembly: the linkage has no part: an assembly needs at least one body with an FE part "
+          "(set assembly.enabled = false for a rigid-body run)");
+  ElasticAssembly assembly(parts, model, options, log, factorized);
+  AssemblySummary summary;
+  const size_t T = motion.size();
+
+  // Writers and envelopes of every part's assembly body.
+  std::vector<post::BodyWriter*> bodies;
+  std::vector<BodyEnvelope> envelopes(parts.size());
+  std::vector<int> part_body(parts.size());
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const fem::Mesh& mesh = parts[p].model.mesh;
+    post::BodyWriter& w = writer.add_body("assembly." + parts[p].body(), mesh);
+    w.begin_series({{.name = "position", .units = "m", .components = 3, .component_names = post::kVectorComponents,
+                     .geometry = true},
+                    {"displacement", "m", 3, post::kVectorComponents},
+                    {"displacement_magnitude", "m", 1, {}},
+                    {"von_mises", "Pa", 1, {}}});
+    bodies.push_back(&w);
+    const fem::Index N = mesh.node_count();
+    envelopes[p] = {Eigen::VectorXd::Constant(N, -1.0), Eigen::VectorXd::Constant(N, -1.0),
+                    post::IndexMatrix::Zero(N, 1), post::IndexMatrix::Zero(N, 1)};
+    part_body[p] = body_index(model, parts[p].body());
+    summary.parts.push_back({parts[p].body(), 0.0, 0.0});
+  }
+
+  // Histories, filled pose by pose.
+  const size_t P = options.points.size();
+  post::FieldMatrix max_u(T, 1);
+  std::vector<post::FieldMatrix> point_u(P, post::FieldMatrix(T, 3)), point_mag(P, post::FieldMatrix(T, 1)),
+      point_rot(P, post::FieldMatrix(T, 3)), point_compliance(P, post::FieldMatrix(T, 9));
+  std::vector<std::vector<post::FieldMatrix>> point_from(P);
+  std::vector<std::vector<std::string>> point_from_names(P);
+  std::vector<std::string> chain_names, drive_names;
+  std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
+  for (size_t i = 0; i < P; ++i) {
+    summary.points.push_back({.name = options.points[i].name, .body = options.points[i].body});
+    summary.points.back().min_compliance_m_per_n = std::numeric_limits<double>::infinity();
+  }
+
+  auto record = [&](const PoseSolution& pose, size_t k) {
+    const mech::Frame& frame = motion[k];
+    max_u(Eigen::Index(k), 0) = pose.max_displacement_m;
+    if (pose.max_displacement_m > summary.max_displacement_m || k == 0) {
+      summary.max_displacement_m = pose.max_displacement_m;
+      summary.max_displacement_time_s = frame.t;
+      summary.max_displacement_body = pose.max_displacement_body;
+    }
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const PartField& field = pose.part(parts[p].body());
+      const post::FieldMatrix X = world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])]);
+      const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
+      bodies[p]->write_step(frame.t, {{"position", X},
+                                      {"displacement", field.displacement_m},
+                                      {"displacement_magnitude", magnitude},
+                                      {"von_mises", field.von_mises_pa}});
+      BodyEnvelope& e = envelopes[p];
+      for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
+        if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
+        if (field.von_mises_pa(i) > e.max_vm(i)) e.max_vm(i) = field.von_mises_pa(i), e.step_vm(i, 0) = fem::Index(k);
+      }
+      summary.parts[p].max_von_mises_pa = std::max(summary.parts[p].max_von_mises_pa, field.von_mises_pa.maxCoeff());
+    }
+    for (size_t i = 0; i < P; ++i) {
+      const PointResult& pr = pose.points[i];
+      const Eigen::Index r = Eigen::Index(k);
+      point_u[i].row(r) = pr.displacement_m.transpose();
+      point_mag[i](r, 0) = pr.displacement_m.norm();
+      point_rot[i].row(r) = pr.rotation_rad.transpose();
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) point_compliance[i](r, 3 * a + b) = pr.compliance_m_per_n(a, b);
+      if (point_from[i].empty())
+        for (const auto& c : pr.contributions) {
+          point_from[i].push_back(post::FieldMatrix::Zero(Eigen::Index(T), 3));
+          point_from_names[i].push_back(c.name);
+        }
+      for (size_t c = 0; c < pr.contributions.size(); ++c)
+        point_from[i][c].row(r) = pr.contributions[c].displacement_m.transpose();
+      PointSummary& ps = summary.points[i];
+      if (pr.displacement_m.norm() > ps.max_displacement_m || k == 0) {
+        ps.max_displacement_m = pr.displacement_m.norm();
+        ps.max_displacement_time_s = frame.t;
+        ps.displacement_at_max_m = pr.displacement_m;
+        ps.contributions_at_max = pr.contributions;
+      }
+      if (options.unit_load_split) {
+        const Eigen::Vector2d ev = in_plane_eigenvalues(pr.compliance_m_per_n);
+        if (ev(0) > ps.max_compliance_m_per_n) ps.max_compliance_m_per_n = ev(0), ps.max_compliance_time_s = frame.t;
+        if (ev(1) < ps.min_compliance_m_per_n) ps.min_compliance_m_per_n = ev(1), ps.min_compliance_time_s = frame.t;
+      }
+    }
+    if (chain_names.empty() && drive_names.empty()) {
+      for (const auto& c : pose.chains) {
+        chain_names.push_back(c.chain);
+        chain_tension.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        chain_elongation.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+      }
+      for (const auto& d : pose.drives) {
+        drive_names.push_back(d.drive);
+        drive_moment.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        drive_twist.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+      }
+    }
+    for (size_t c = 0; c < pose.chains.size(); ++c) {
+      chain_tension[c](Eigen::Index(k), 0) = pose.chains[c].tension_n;
+      chain_elongation[c](Eigen::Index(k), 0) = pose.chains[c].elongation_m;
+      for (const auto& cf : frame.chains)
+        if (cf.name == pose.chains[c].chain && cf.tension_N > 0)
+          summary.worst_chain_mismatch = std::max(summary.worst_chain_mismatch,
+                                                  std::abs(pose.chains[c].tension_n - cf.tension_N) / cf.tension_N);
+    }
+    for (size_t d = 0; d < pose.drives.size(); ++d) {
+      drive_moment[d](Eigen::Index(k), 0) = pose.drives[d].moment_on_j_nm;
+      drive_twist[d](Eigen::Index(k), 0) = pose.drives[d].twist_rad;
+    }
+  };
+
+  Stopwatch clock;
+  for (size_t first = 0; first < T; first += kPosesPerBlock) {
+    const size_t count = std::min(kPosesPerBlock, T - first);
+    const std::vector<mech::Frame> block(motion.begin() + long(first), motion.begin() + long(first + count));
+    const std::vector<PoseSolution> poses = assembly.solve(block);
+    if (first == 0) summary.indeterminacy = poses.front().indeterminacy;
+    for (size_t f = 0; f < count; ++f) record(poses[f], first + f);
+    log.info("  elastic assembly: {}/{} output times done in {:.2f} s", first + count, T, clock.seconds());
+  }
+  const bool determinate = summary.indeterminacy.in_plane == 0;
+  if (determinate && summary.worst_chain_mismatch > 1e-6)
+    fail(
+        "elastic assembly: the chain force of the statically determinate assembly differs from the dynamics' tension by "
+        "{:.2e} of it (tolerance 1e-6)",
+        summary.worst_chain_mismatch);
+
+  for (size_t p = 0; p < parts.size(); ++p) {
+    bodies[p]->write_envelope("displacement_magnitude", "m", envelopes[p].max_u, envelopes[p].step_u, "max");
+    bodies[p]->write_envelope("von_mises", "Pa", envelopes[p].max_vm, envelopes[p].step_vm, "max");
+  }
+
+  if (static_pose) {
+    const PoseSolution pose = assembly.solve(*static_pose);
+    summary.has_static_study = true;
+    summary.static_max_displacement_m = pose.max_displacement_m;
+    summary.static_max_displacement_body = pose.max_displacement_body;
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const PartField& field = pose.part(parts[p].body());
+      post::BodyWriter& w = *bodies[p];
+      w.write_static("static_position", "m",
+                     world_position(parts[p].model.mesh, static_pose->bodies[size_t(part_body[p])]),
+                     post::kVectorComponents);
+      w.write_static("static_displacement", "m", field.displacement_m, post::kVectorComponents);
+      w.write_static("static_displacement_magnitude", "m", field.displacement_m.rowwise().norm());
+      w.write_static("static_von_mises", "Pa", field.von_mises_pa);
+      summary.parts[p].static_von_mises_pa = field.von_mises_pa.maxCoeff();
+    }
+    for (size_t i = 0; i < P; ++i) {
+      PointSummary& ps = summary.points[i];
+      ps.has_static_study = true;
+      ps.static_displacement_m = pose.points[i].displacement_m;
+      ps.static_contributions = pose.points[i].contributions;
+      ps.static_compliance_m_per_n = pose.points[i].compliance_m_per_n;
+    }
+  }
+
+  writer.write_history("assembly.max_displacement", "m", max_u);
+  for (size_t i = 0; i < P; ++i) {
+    const std::string base = "assembly.point." + options.points[i].name;
+    writer.write_history(base + ".displacement", "m", point_u[i], post::kVectorComponents);
+    writer.write_history(base + ".displacement_magnitude", "m", point_mag[i]);
+    writer.write_history(base + ".rotation", "rad", point_rot[i], post::kVectorComponents);
+    if (options.unit_load_split) {
+      writer.write_history(base + ".compliance", "m/N", point_compliance[i],
+                           {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"});
+      for (size_t c = 0; c < point_from[i].size(); ++c)
+        writer.write_history(base + ".from." + point_from_names[i][c], "m", point_from[i][c], post::kVectorComponents);
+    }
+  }
+  for (size_t c = 0; c < chain_names.size(); ++c) {
+    writer.write_history("assembly.chain." + chain_names[c] + ".tension", "N", chain_tension[c]);
+    writer.write_history("assembly.chain." + chain_names[c] + ".elongation", "m", chain_elongation[c]);
+  }
+  for (size_t d = 0; d < drive_names.size(); ++d) {
+    writer.write_history("assembly.drive." + drive_names[d] + ".moment", "N*m", drive_moment[d]);
+    writer.write_history("assembly.drive." + drive_names[d] + ".twist", "rad", drive_twist[d]);
+  }
+  summary.statistics = assembly.statistics();
+  return summary;
+}
+
+namespace {
+
+// "part.lever 12.3 %, chain.chain 80.1 %": each contribution's component
+// along the total displacement, in % of its length (they add up to 100 %).
+std::string split_text(const Eigen::Vector3d& total, const std::vector<PointContribution>& contributions) {
+  const double length = total.norm();
+  if (!(length > 0)) return "-";
+  std::string s;
+  for (const auto& c : contributions)
+    s += fmt::format("{}{} {:.1f} %", s.empty() ? "" : ", ", c.name, 100.0 * c.displacement_m.dot(total) / (length * length));
+  return s;
+}
+
+}  // namespace
+
+std::string format_assembly_summary(const AssemblySummary& s) {
+  using units::kMm;
+  std::string out = "  elastic assembly (the linkage as one structure held by the ground; world axes, from the rigid pose):\n";
+  out += fmt::format(
+      "    statically {} in the plane{}; out of the plane {}\n",
+      s.indeterminacy.in_plane == 0 ? "determinate" : "indeterminate",
+      s.indeterminacy.in_plane == 0 ? std::string()
+                                    : fmt::format(" (degree {}: joint loads depend on the stiffness of the parts)",
+                                                  s.indeterminacy.in_plane),
+      s.indeterminacy.out_of_plane == 0
+          ? std::string("determinate")
+          : fmt::format("indeterminate (degree {}: out-of-plane joint loads depend on the parts' stiffness; the "
+                        "per-link analysis splits them equally between the pins)",
+                        s.indeterminacy.out_of_plane));
+  out += fmt::format("    total deformation (max |u|, all nodes): {:.4f} mm at t = {:.4f} s ({})", s.max_displacement_m / kMm,
+                     s.max_displacement_time_s, s.max_displacement_body);
+  out += s.has_static_study ? fmt::format("; static study {:.4f} mm ({})\n", s.static_max_displacement_m / kMm,
+                                          s.static_max_displacement_body)
+                            : std::string("\n");
+  for (const auto& p : s.parts)
+    out += fmt::format("    {:<12} max von Mises {:.3f} MPa over the motion{}\n", p.body, p.max_von_mises_pa / units::kMpa,
+                       s.has_static_study ? fmt::format(", {:.3f} MPa static", p.static_von_mises_pa / units::kMpa)
+                                          : std::string());
+  for (const auto& p : s.points) {
+    const Eigen::Vector3d& u = p.displacement_at_max_m;
+    out += fmt::format("    point {} ({}): max |u| {:.4f} mm at t = {:.4f} s, u = ({:+.4f}, {:+.4f}, {:+.4f}) mm\n", p.name,
+                       p.body, p.max_displacement_m / kMm, p.max_displacement_time_s, u.x() / kMm, u.y() / kMm,
+                       u.z() / kMm);
+    if (!p.contributions_at_max.empty())
+      out += fmt::format("      split (unit-load method, along u): {}\n", split_text(u, p.contributions_at_max));
+    if (p.max_compliance_m_per_n > 0)
+      out += fmt::format(
+          "      in-plane compliance: largest eigenvalue {:.4g} um/N (t = {:.4f} s), smallest {:.4g} um/N (t = {:.4f} s) "
+          "over the motion\n",
+          p.max_compliance_m_per_n * 1e6, p.max_compliance_time_s, p.min_compliance_m_per_n * 1e6,
+          p.min_compliance_time_s);
+    if (p.has_static_study) {
+      const Eigen::Vector3d& v = p.static_displacement_m;
+      out += fmt::format("      static study: |u| {:.4f} mm, u = ({:+.4f}, {:+.4f}, {:+.4f}) mm; split {}\n", v.norm() / kMm,
+                         v.x() / kMm, v.y() / kMm, v.z() / kMm, split_text(v, p.static_contributions));
+    }
+  }
+  out += fmt::format("    cost: setup {:.2f} s (factorizations {:.2f} s, interface solves), {:.1f} ms per pose\n",
+                     s.statistics.setup_seconds, s.statistics.factorize_seconds, 1e3 * s.statistics.pose_seconds());
+  return out;
+}
+
+}  // namespace kinetofem::structure
