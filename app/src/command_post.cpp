@@ -220,6 +220,33 @@ std::string file_safe(std::string s) {
   return s;
 }
 
+// The pictures of the elastic assembly: the static pose study, the step of the
+// largest deflection of the gripper point H, and each tracked point's deflection.
+void write_assembly_pictures(const post::ResultsFile& r, const post::AssemblyContents& assembly, const fs::path& png_dir,
+                             const post::PictureOptions& po, std::vector<std::string>& written) {
+  post::AssemblyPictureOptions ao{po};
+  auto draw = [&](const std::string& file) {
+    const fs::path p = png_dir / file;
+    const post::AssemblyPictureInfo info = post::write_assembly_picture(r, p, ao);
+    written.push_back(fmt::format("{}  ({}, deformation x{:g})", p.string(),
+                                  info.step < 0 ? info.chosen_by : when(info.time_s) + ", " + info.chosen_by,
+                                  info.deformation_scale));
+  };
+  if (assembly.has_static) {
+    ao.pose = post::AssemblyPictureOptions::Pose::Static;
+    draw("assembly_static.png");
+  }
+  ao.pose = post::AssemblyPictureOptions::Pose::LargestDeflection;
+  ao.point = "H";
+  const bool has_h = std::find(assembly.points.begin(), assembly.points.end(), "H") != assembly.points.end();
+  draw(has_h ? "assembly_max_H.png" : "assembly_max.png");
+  for (const auto& point : assembly.points) {
+    const fs::path p = png_dir / ("deflection_" + file_safe(point) + ".png");
+    const post::PointDeflectionInfo info = post::write_point_deflection_picture(r, p, point, po);
+    written.push_back(fmt::format("{}  (max |u| {:.3f} mm at {})", p.string(), info.max_m * 1e3, when(info.time_s)));
+  }
+}
+
 int run_post(const PostOptions& o) {
   require(fs::exists(o.results), "{}: no such results file", o.results.string());
   require(fs::is_regular_file(o.results), "{}: not a file", o.results.string());
@@ -274,7 +301,11 @@ int run_post(const PostOptions& o) {
   }
   if (!png_dir.empty()) {
     make_directory(png_dir, "--png");
-    if (!envelopes.empty()) {
+    const post::AssemblyContents assembly = post::assembly_contents(r);
+    const bool links_have_field = std::any_of(envelopes.begin(), envelopes.end(), [&](const post::BodyEnvelope& e) {
+      return std::find(assembly.bodies.begin(), assembly.bodies.end(), e.body) == assembly.bodies.end();
+    });
+    if (links_have_field) {  // the stress picture leaves the assembly's bodies out
       post::StressPictureOptions so;
       so.field = o.field;
       so.deformation_scale = o.deformation_scale;
@@ -301,6 +332,7 @@ int run_post(const PostOptions& o) {
         post::write_path_picture(r, p, name, po);
         written.push_back(p.string());
       }
+    if (!assembly.bodies.empty()) write_assembly_pictures(r, assembly, png_dir, po, written);
   }
   if (!written.empty()) {
     fmt::print("  written:\n");

@@ -6,8 +6,12 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <numeric>
+#include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <cairo.h>
@@ -211,7 +215,7 @@ void title(cairo_t* cr, const Canvas& canvas, const std::string& line1, const st
   }
 }
 
-// ---- the stress picture --------------------------------------------------
+// ---- boundary surfaces (the stress and the assembly pictures) -------------
 
 // Boundary faces of a mesh: the element faces that belong to one element only,
 // as the face's node lists (outward normal, Gmsh face node order).
@@ -250,6 +254,10 @@ std::vector<std::vector<fem::Index>> boundary_faces(const fem::Mesh& mesh) {
   return out;
 }
 
+// Corners of a boundary face: 3 (TRI3, TRI6) or 4 (QUAD4, QUAD8); the mid-edge
+// node of edge (i, i+1) of a quadratic face is node corners + i.
+size_t corners_of(const std::vector<fem::Index>& face) { return face.size() == 3 || face.size() == 6 ? 3 : 4; }
+
 // Flat triangles of a face: linear faces as they are, quadratic ones split at
 // their mid-edge nodes so curved bores stay round.
 std::vector<std::array<fem::Index, 3>> triangles_of(const std::vector<fem::Index>& n) {
@@ -264,6 +272,201 @@ std::vector<std::array<fem::Index, 3>> triangles_of(const std::vector<fem::Index
   }
 }
 
+// The oblique view of the x-y plane (png_plots.hpp): X = x + k z cos a, Y = y + k z sin a,
+// seen from +z along the projection direction.
+struct ObliqueView {
+  double k, a;                      // depth factor, angle (rad)
+  Eigen::Vector3d towards_viewer;   // unit; a face is seen if its outward normal points this way
+  ObliqueView(double depth, double angle_deg)
+      : k(depth),
+        a(angle_deg * std::numbers::pi / 180.0),
+        towards_viewer(Eigen::Vector3d(-k * std::cos(a), -k * std::sin(a), 1.0).normalized()) {}
+  Eigen::MatrixX2d project(const fem::NodeCoordinates& p) const {
+    Eigen::MatrixX2d out(p.rows(), 2);
+    out.col(0) = p.col(0) + k * std::cos(a) * p.col(2);
+    out.col(1) = p.col(1) + k * std::sin(a) * p.col(2);
+    return out;
+  }
+  std::string description() const {
+    return k == 0 ? std::string("x-y plane seen from +z")
+                  : fmt::format("oblique view of the x-y plane (z drawn at {:g}°, x{:g})", a * 180.0 / std::numbers::pi, k);
+  }
+};
+
+// One flat triangle of the boundary surface as it is painted.
+struct DrawnTriangle {
+  std::array<Eigen::Vector2d, 3> corner;  // projected, mm
+  double depth;                           // along towards_viewer: the larger, the nearer
+  double value;                           // mean of the corner values, field units
+  double shade;                           // 0.62 .. 1, lit from the upper left
+  int layer = 0;                          // painted in layer order first, then far to near
+};
+
+// The triangles of `faces` that face the viewer, appended to `out`. deformed_mm:
+// node positions as drawn (3-D), projected: the same through the view.
+void add_visible_triangles(const std::vector<std::vector<fem::Index>>& faces, const fem::NodeCoordinates& deformed_mm,
+                           const Eigen::MatrixX2d& projected, const Eigen::VectorXd& value, const ObliqueView& view,
+                           std::vector<DrawnTriangle>& out, int layer = 0) {
+  const Eigen::Vector3d light = Eigen::Vector3d(-0.2, 0.3, 1.0).normalized();
+  for (const auto& face : faces)
+    for (const auto& t : triangles_of(face)) {
+      const Eigen::Vector3d p0 = deformed_mm.row(t[0]).transpose(), p1 = deformed_mm.row(t[1]).transpose(),
+                            p2 = deformed_mm.row(t[2]).transpose();
+      Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);
+      const double len = normal.norm();
+      if (!(len > 0) || normal.dot(view.towards_viewer) <= 0) continue;
+      normal /= len;
+      out.push_back({{projected.row(t[0]).transpose(), projected.row(t[1]).transpose(), projected.row(t[2]).transpose()},
+                     (p0 + p1 + p2).dot(view.towards_viewer) / 3.0,
+                     (value(t[0]) + value(t[1]) + value(t[2])) / 3.0,
+                     0.62 + 0.38 * std::max(0.0, normal.dot(light)), layer});
+    }
+}
+
+// Paints the triangles layer by layer, each far to near (painter's algorithm), coloured by value / colour_max.
+void paint_triangles(cairo_t* cr, const Axes& ax, std::vector<DrawnTriangle>& tris, double colour_max) {
+  std::sort(tris.begin(), tris.end(), [](const DrawnTriangle& x, const DrawnTriangle& y) {
+    return x.layer != y.layer ? x.layer < y.layer : x.depth < y.depth;
+  });
+  cairo_save(cr);
+  clip_to(cr, ax);
+  cairo_set_line_width(cr, 0.7);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_BEVEL);
+  for (const DrawnTriangle& t : tris) {
+    const Rgb c = turbo(t.value / colour_max);
+    cairo_set_source_rgb(cr, c.r * t.shade, c.g * t.shade, c.b * t.shade);
+    cairo_move_to(cr, ax.X(t.corner[0].x()), ax.Y(t.corner[0].y()));
+    cairo_line_to(cr, ax.X(t.corner[1].x()), ax.Y(t.corner[1].y()));
+    cairo_line_to(cr, ax.X(t.corner[2].x()), ax.Y(t.corner[2].y()));
+    cairo_close_path(cr);
+    cairo_fill_preserve(cr);
+    cairo_stroke(cr);  // the same colour: hides anti-aliasing seams between triangles
+  }
+  cairo_restore(cr);
+}
+
+// The outline of a closed boundary surface as seen: silhouette edges (between a
+// face seen and one facing away), crease edges between two seen faces meeting
+// at more than ~25°, and open edges of a seen face; each a node path, through
+// the mid-edge node of a quadratic face.
+std::vector<std::vector<fem::Index>> outline_edges(const std::vector<std::vector<fem::Index>>& faces,
+                                                   const fem::NodeCoordinates& xyz, const ObliqueView& view) {
+  struct Side {
+    std::vector<fem::Index> path;
+    Eigen::Vector3d normal;  // unit, outward
+  };
+  std::vector<std::pair<std::pair<fem::Index, fem::Index>, Side>> sides;
+  for (const auto& face : faces) {
+    const size_t nc = corners_of(face);
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell's method over the corners
+    for (size_t i = 0; i < nc; ++i)
+      normal += Eigen::Vector3d(xyz.row(face[i]).transpose()).cross(Eigen::Vector3d(xyz.row(face[(i + 1) % nc]).transpose()));
+    if (!(normal.norm() > 0)) continue;
+    normal.normalize();
+    for (size_t i = 0; i < nc; ++i) {
+      const fem::Index p = face[i], q = face[(i + 1) % nc];
+      std::vector<fem::Index> path = face.size() > nc ? std::vector<fem::Index>{p, face[nc + i], q} : std::vector<fem::Index>{p, q};
+      sides.push_back({{std::min(p, q), std::max(p, q)}, {std::move(path), normal}});
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::vector<fem::Index>> out;
+  for (size_t i = 0; i < sides.size();) {
+    size_t j = i + 1;
+    while (j < sides.size() && sides[j].first == sides[i].first) ++j;
+    const Side& s = sides[i].second;
+    const bool seen = s.normal.dot(view.towards_viewer) > 0;
+    if (j - i == 1) {
+      if (seen) out.push_back(s.path);
+    } else {
+      const Side& o = sides[i + 1].second;
+      const bool other_seen = o.normal.dot(view.towards_viewer) > 0;
+      if (seen != other_seen || (seen && s.normal.dot(o.normal) < std::cos(25.0 * std::numbers::pi / 180.0)))
+        out.push_back(s.path);
+    }
+    i = j;
+  }
+  return out;
+}
+
+void stroke_paths(cairo_t* cr, const Axes& ax, const std::vector<std::vector<fem::Index>>& paths,
+                  const Eigen::MatrixX2d& projected) {
+  for (const auto& path : paths)
+    for (size_t i = 0; i < path.size(); ++i)
+      (i ? cairo_line_to : cairo_move_to)(cr, ax.X(projected(path[i], 0)), ax.Y(projected(path[i], 1)));
+  cairo_stroke(cr);
+}
+
+// A ring at (px, py) with a leader line and a boxed bold label. The label goes
+// away from the nearer side edge and below the point near the top edge, unless
+// dx, dy (+-1) are given.
+void mark_point(cairo_t* cr, const Axes& ax, double px, double py, const std::string& label, double font, int dx = 0,
+                int dy = 0) {
+  if (dx == 0) dx = px - ax.left > ax.left + ax.width - px ? -1 : 1;
+  if (dy == 0) dy = py < ax.top + 40 ? 1 : -1;
+  cairo_save(cr);
+  cairo_new_path(cr);  // text() leaves a current point; the ring must not start from it
+  cairo_set_line_width(cr, 4);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_arc(cr, px, py, 8, 0, 2 * std::numbers::pi);
+  cairo_stroke(cr);
+  cairo_set_line_width(cr, 2);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_arc(cr, px, py, 8, 0, 2 * std::numbers::pi);
+  cairo_stroke(cr);
+  cairo_move_to(cr, px + dx * 6, py + dy * 6);
+  cairo_line_to(cr, px + dx * 22, py + dy * 22);
+  cairo_stroke(cr);
+  const double lx = px + dx * 24, ly = py + dy * 24 + (dy > 0 ? 12 : 0), tw = text_width(cr, label, font) * 1.08;
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+  cairo_rectangle(cr, dx > 0 ? lx - 2 : lx - tw - 2, ly - 13, tw + 4, 17);
+  cairo_fill(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text(cr, lx, ly, label, font, dx > 0 ? 0.0 : 1.0, 1.0, true);
+  cairo_restore(cr);
+}
+
+// A vertical "turbo" colour bar from 0 (bottom) to vmax (display units) with its heading above.
+void draw_colour_bar(cairo_t* cr, double bx, double by, double bw, double bh, double vmax, const std::string& heading,
+                     const std::string& unit_label, double font) {
+  for (int i = 0; i < 256; ++i) {
+    set_colour(cr, turbo((i + 0.5) / 256.0));
+    cairo_rectangle(cr, bx, by + bh - (i + 1) * bh / 256.0, bw, bh / 256.0 + 0.6);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, bx + 0.5, by + 0.5, bw, bh);
+  cairo_stroke(cr);
+  const double step = nice_step(vmax, 6);
+  for (double t : ticks_of(0.0, vmax, step)) {
+    const double py = std::round(by + bh - t / vmax * bh) + 0.5;
+    cairo_move_to(cr, bx + bw, py);
+    cairo_line_to(cr, bx + bw + 5, py);
+    cairo_stroke(cr);
+    if (vmax - t > 0.35 * step) text(cr, bx + bw + 8, py, tick_label(t, step), font - 1, 0.0, 0.5);
+  }
+  const int decimals = std::clamp(2 - int(std::floor(std::log10(vmax))), 2, 6);  // 3 significant digits below 1
+  text(cr, bx + bw + 8, by + 0.5, fmt::format("{:.{}f}", vmax, decimals), font - 1, 0.0, 0.5, true);
+  text(cr, bx + bw / 2, by - 24, heading, font, 0.5, 1.0, true);
+  text(cr, bx + bw / 2, by - 8, "[" + unit_label + "]", font, 0.5, 1.0);
+}
+
+double round_down_125(double x) {
+  const double mag = std::pow(10.0, std::floor(std::log10(x))), f = x / mag;
+  return (f >= 5 ? 5.0 : f >= 2 ? 2.0 : 1.0) * mag;
+}
+
+// The 1/2/5 x 10^k value nearest to x on a log scale.
+double nearest_125(double x) {
+  const double mag = std::pow(10.0, std::floor(std::log10(x))), f = x / mag;
+  return (f < std::sqrt(2.0) ? 1.0 : f < std::sqrt(10.0) ? 2.0 : f < std::sqrt(50.0) ? 5.0 : 10.0) * mag;
+}
+
+// Bodies of the elastic assembly ("assembly.<b>"): world-axes displacement, drawn by write_assembly_picture.
+constexpr std::string_view kAssemblyBodyPrefix = "assembly.";
+bool is_assembly_body(const std::string& body) { return body.rfind(kAssemblyBodyPrefix, 0) == 0; }
+
 struct BodyView {
   std::string name;
   fem::Mesh mesh;
@@ -275,16 +478,12 @@ struct BodyView {
   double x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // projected bounding box, mm
 };
 
-double round_down_125(double x) {
-  const double mag = std::pow(10.0, std::floor(std::log10(x))), f = x / mag;
-  return (f >= 5 ? 5.0 : f >= 2 ? 2.0 : 1.0) * mag;
-}
-
 }  // namespace
 
 StressPictureInfo write_stress_picture(const ResultsFile& results, const std::filesystem::path& png,
                                        const StressPictureOptions& options) {
-  const std::vector<BodyEnvelope> envelopes = max_envelopes(results, options.field);
+  std::vector<BodyEnvelope> envelopes = max_envelopes(results, options.field);
+  std::erase_if(envelopes, [](const BodyEnvelope& e) { return is_assembly_body(e.body); });
   require(!envelopes.empty(), "'{}': no body has a field '{}' to draw", results.path().string(), options.field);
   size_t peak_env = 0;
   for (size_t b = 1; b < envelopes.size(); ++b)
@@ -329,16 +528,12 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
   double scale = options.deformation_scale;
   if (scale <= 0) scale = max_u_m > 0 ? round_down_125(0.05 * extent_mm / (max_u_m * 1e3)) : 0.0;
 
-  const double k = options.oblique_depth, a = options.oblique_angle_deg * std::numbers::pi / 180.0;
-  const Eigen::Vector3d view_dir = Eigen::Vector3d(-k * std::cos(a), -k * std::sin(a), 1.0).normalized();
-  const Eigen::Vector3d light = Eigen::Vector3d(-0.2, 0.3, 1.0).normalized();
+  const ObliqueView view(options.oblique_depth, options.oblique_angle_deg);
   double shown_max = 0;
   for (size_t b = 0; b < views.size(); ++b) {
     BodyView& v = views[b];
     v.deformed_mm = (v.mesh.nodes + scale * displacement[b]) * 1e3;
-    v.projected.resize(v.deformed_mm.rows(), 2);
-    v.projected.col(0) = v.deformed_mm.col(0) + k * std::cos(a) * v.deformed_mm.col(2);
-    v.projected.col(1) = v.deformed_mm.col(1) + k * std::sin(a) * v.deformed_mm.col(2);
+    v.projected = view.project(v.deformed_mm);
     v.x0 = v.projected.col(0).minCoeff(), v.x1 = v.projected.col(0).maxCoeff();
     v.y0 = v.projected.col(1).minCoeff(), v.y1 = v.projected.col(1).maxCoeff();
     const double pad = 0.06 * std::max(v.x1 - v.x0, v.y1 - v.y0);
@@ -357,10 +552,8 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
   title(cr, canvas,
         fmt::format("{}: {}{} {}, deformation scaled x{:g}", name, field_name,
                     std::isnan(critical_time) ? "," : " at", when, scale),
-        fmt::format("oblique view of the x-y plane (z drawn at {:g}°, x{:g}); each body in its own frame; "
-                    "peak {:.2f} {} on {}, node {}",
-                    options.oblique_angle_deg, k, shown_max * du.factor, du.label, views[peak_env].name,
-                    views[peak_env].peak_node));
+        fmt::format("{}; each body in its own frame; peak {:.2f} {} on {}, node {}", view.description(),
+                    shown_max * du.factor, du.label, views[peak_env].name, views[peak_env].peak_node));
 
   // Layout: panels side by side or stacked, whichever draws larger; one mm scale for all.
   const double font = 13, top = 80, bottom_margin = 60, left_margin = 80, bar_width = 150, gap = 40;
@@ -393,89 +586,17 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
          0.0, 1.0, true);
     draw_axes(cr, ax, "x [mm]", "y [mm]", font - 1, true, std::max(3, int(w / 70)), std::max(3, int(h / 60)));
 
-    // Visible triangles, far to near.
-    struct Tri {
-      std::array<fem::Index, 3> n;
-      double depth, value, shade;
-    };
-    std::vector<Tri> tris;
-    for (const auto& face : boundary_faces(v.mesh))
-      for (const auto& t : triangles_of(face)) {
-        const Eigen::Vector3d p0 = v.deformed_mm.row(t[0]).transpose(), p1 = v.deformed_mm.row(t[1]).transpose(),
-                              p2 = v.deformed_mm.row(t[2]).transpose();
-        Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);
-        const double len = normal.norm();
-        if (!(len > 0) || normal.dot(view_dir) <= 0) continue;
-        normal /= len;
-        tris.push_back({t, (p0 + p1 + p2).dot(view_dir) / 3.0, (v.value(t[0]) + v.value(t[1]) + v.value(t[2])) / 3.0,
-                        0.62 + 0.38 * std::max(0.0, normal.dot(light))});
-      }
-    std::sort(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.depth < y.depth; });
-    cairo_save(cr);
-    clip_to(cr, ax);
-    cairo_set_line_width(cr, 0.7);
-    cairo_set_line_join(cr, CAIRO_LINE_JOIN_BEVEL);
-    for (const Tri& t : tris) {
-      const Rgb c = turbo(t.value / colour_max);
-      cairo_set_source_rgb(cr, c.r * t.shade, c.g * t.shade, c.b * t.shade);
-      cairo_move_to(cr, ax.X(v.projected(t.n[0], 0)), ax.Y(v.projected(t.n[0], 1)));
-      cairo_line_to(cr, ax.X(v.projected(t.n[1], 0)), ax.Y(v.projected(t.n[1], 1)));
-      cairo_line_to(cr, ax.X(v.projected(t.n[2], 0)), ax.Y(v.projected(t.n[2], 1)));
-      cairo_close_path(cr);
-      cairo_fill_preserve(cr);
-      cairo_stroke(cr);  // the same colour: hides anti-aliasing seams between triangles
-    }
-    cairo_restore(cr);
-    if (b == peak_env) {  // mark the peak node on top of everything
-      const double px = ax.X(v.projected(v.peak_node, 0)), py = ax.Y(v.projected(v.peak_node, 1));
-      cairo_set_line_width(cr, 4);
-      cairo_set_source_rgb(cr, 1, 1, 1);
-      cairo_arc(cr, px, py, 8, 0, 2 * std::numbers::pi);
-      cairo_stroke(cr);
-      cairo_set_line_width(cr, 2);
-      cairo_set_source_rgb(cr, 0, 0, 0);
-      cairo_arc(cr, px, py, 8, 0, 2 * std::numbers::pi);
-      cairo_stroke(cr);
-      const double dx = px - ax.left > ax.left + ax.width - px ? -1 : 1, dy = py < ax.top + 40 ? 1 : -1;
-      cairo_move_to(cr, px + dx * 6, py + dy * 6);
-      cairo_line_to(cr, px + dx * 22, py + dy * 22);
-      cairo_stroke(cr);
-      const std::string label = "peak";
-      const double lx = px + dx * 24, ly = py + dy * 24 + (dy > 0 ? 12 : 0), tw = text_width(cr, label, font);
-      cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-      cairo_rectangle(cr, dx > 0 ? lx - 2 : lx - tw - 2, ly - 13, tw + 4, 17);
-      cairo_fill(cr);
-      cairo_set_source_rgb(cr, 0, 0, 0);
-      text(cr, lx, ly, label, font, dx > 0 ? 0.0 : 1.0, 1.0, true);
-    }
+    std::vector<DrawnTriangle> tris;
+    add_visible_triangles(boundary_faces(v.mesh), v.deformed_mm, v.projected, v.value, view, tris);
+    paint_triangles(cr, ax, tris, colour_max);
+    if (b == peak_env)  // the peak on top of everything
+      mark_point(cr, ax, ax.X(v.projected(v.peak_node, 0)), ax.Y(v.projected(v.peak_node, 1)), "peak", font);
     if (row) cursor_x += w + gap + left_margin;
     else cursor_y += h + panel_title + gap + bottom_margin;
   }
 
-  // Colour bar.
-  const double bx = canvas.width() - bar_width + 20, by = top + 40, bh = std::min(area_h - 60, 520.0), bw = 26;
-  for (int i = 0; i < 256; ++i) {
-    const Rgb c = turbo((i + 0.5) / 256.0);
-    set_colour(cr, c);
-    cairo_rectangle(cr, bx, by + bh - (i + 1) * bh / 256.0, bw, bh / 256.0 + 0.6);
-    cairo_fill(cr);
-  }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_set_line_width(cr, 1);
-  cairo_rectangle(cr, bx + 0.5, by + 0.5, bw, bh);
-  cairo_stroke(cr);
-  const double vmax = colour_max * du.factor, step = nice_step(vmax, 6);
-  for (double t : ticks_of(0.0, vmax, step)) {
-    const double py = std::round(by + bh - t / vmax * bh) + 0.5;
-    cairo_move_to(cr, bx + bw, py);
-    cairo_line_to(cr, bx + bw + 5, py);
-    cairo_stroke(cr);
-    if (vmax - t > 0.35 * step) text(cr, bx + bw + 8, py, tick_label(t, step), font - 1, 0.0, 0.5);
-  }
-  text(cr, bx + bw + 8, by + 0.5, fmt::format("{:.2f}", vmax), font - 1, 0.0, 0.5, true);
-  text(cr, bx + bw / 2, by - 24, options.field == "von_mises" ? std::string("von Mises") : options.field, font, 0.5, 1.0,
-       true);
-  text(cr, bx + bw / 2, by - 8, "[" + du.label + "]", font, 0.5, 1.0);
+  draw_colour_bar(cr, canvas.width() - bar_width + 20, top + 40, 26, std::min(area_h - 60, 520.0), colour_max * du.factor,
+                  options.field == "von_mises" ? std::string("von Mises") : options.field, du.label, font);
   canvas.save(png);
   return {critical_time, scale, shown_max, views[peak_env].name, views[peak_env].peak_node};
 }
@@ -489,9 +610,10 @@ struct Curve {
   bool dashed = false;
 };
 
-// A line panel with its own y range (0 included), a legend at its right.
-void draw_curves(cairo_t* cr, const Axes& frame, const std::vector<Curve>& curves, const std::string& ylabel,
-                 const std::string& xlabel, const std::string& panel_title, double legend_x) {
+// A line panel with its own y range (0 included; `headroom`, a share of the data's range, free above the
+// curves for a label), a legend at its right; returns the axes drawn.
+Axes draw_curves(cairo_t* cr, const Axes& frame, const std::vector<Curve>& curves, const std::string& ylabel,
+                 const std::string& xlabel, const std::string& panel_title, double legend_x, double headroom = 0.0) {
   double lo = 0, hi = 0, x0 = curves.front().x.front(), x1 = curves.front().x.back();
   for (const auto& c : curves)
     for (size_t i = 0; i < c.y.size(); ++i) {
@@ -499,6 +621,7 @@ void draw_curves(cairo_t* cr, const Axes& frame, const std::vector<Curve>& curve
       x0 = std::min(x0, c.x[i]), x1 = std::max(x1, c.x[i]);
     }
   if (hi - lo <= 0) hi = lo + 1;
+  hi += headroom * (hi - lo);
   const double step = nice_step(hi - lo, 6);
   lo = std::floor(lo / step + 1e-9) * step, hi = std::ceil(hi / step - 1e-9) * step;
   if (x1 <= x0) x1 = x0 + 1;
@@ -537,6 +660,7 @@ void draw_curves(cairo_t* cr, const Axes& frame, const std::vector<Curve>& curve
     text(cr, legend_x + 42, y, c.label, font, 0.0, 0.5);
     y += 22;
   }
+  return ax;
 }
 
 // The legend label of a mechanism history to plot, or "" to leave it out.
@@ -663,6 +787,7 @@ void write_path_picture(const ResultsFile& results, const std::filesystem::path&
   auto marker = [&](long i, const Rgb& c, const std::string& label) {
     const double px = ax.X(x(i)), py = ax.Y(y(i));
     set_colour(cr, c);
+    cairo_new_path(cr);  // the previous label's text left a current point
     cairo_arc(cr, px, py, 8, 0, 2 * std::numbers::pi);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
@@ -677,6 +802,393 @@ void write_path_picture(const ResultsFile& results, const std::filesystem::path&
   marker(last, kPalette[3], fmt::format("end, t = {:.2f} s ({:.1f}, {:.1f}) mm", t1, x(last), y(last)));
   cairo_restore(cr);
   canvas.save(png);
+}
+
+// ---- the elastic assembly -------------------------------------------------
+
+namespace {
+
+// Names the pipeline's assembly stage writes (docs/results.md, "The elastic assembly").
+constexpr const char* kPointPrefix = "assembly.point.";
+constexpr const char* kMaxDisplacement = "assembly.max_displacement";
+std::string point_history(const std::string& point, const std::string& what) { return kPointPrefix + point + "." + what; }
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s.empty() ? std::string("none") : s;
+}
+
+// A length in mm with three significant digits (at least two decimals): 1.00, 0.0300, 12.30.
+std::string mm_text(double metres) {
+  const double mm = metres * 1e3;
+  const int decimals = mm > 0 ? std::clamp(2 - int(std::floor(std::log10(mm))), 2, 6) : 2;
+  return fmt::format("{:.{}f} mm", mm, decimals);
+}
+
+size_t nearest_index(const std::vector<double>& times, double t) {
+  size_t k = 0;
+  for (size_t i = 1; i < times.size(); ++i)
+    if (std::abs(times[i] - t) < std::abs(times[k] - t)) k = i;
+  return k;
+}
+
+// The index of the largest value (first on a tie).
+size_t argmax(const Eigen::VectorXd& v) {
+  Eigen::Index i = 0;
+  v.maxCoeff(&i);
+  return size_t(i);
+}
+
+// |u| of a tracked point over the mechanism times: its magnitude history, else the norm of its displacement.
+std::optional<TimeHistory> point_magnitude(const ResultsFile& results, const std::string& point) {
+  const auto histories = results.histories();
+  if (has(histories, point_history(point, "displacement_magnitude")))
+    return mechanism_history(results, point_history(point, "displacement_magnitude"));
+  if (!has(histories, point_history(point, "displacement"))) return std::nullopt;
+  TimeHistory h = mechanism_history(results, point_history(point, "displacement"));
+  h.values = FieldMatrix(h.magnitude());
+  return h;
+}
+
+// One assembly body at the step drawn: rigid position and elastic displacement in world axes.
+struct AssemblyBody {
+  std::string name;
+  fem::Mesh mesh;
+  std::vector<std::vector<fem::Index>> faces;
+  fem::NodeCoordinates position_m, displacement_m;
+  Eigen::VectorXd magnitude_m;
+};
+
+// The step to draw and why.
+struct Pose {
+  fem::Index step = -1;  // -1: static
+  double time_s = kNaN;
+  std::string chosen_by;
+};
+
+Pose choose_pose(const ResultsFile& results, const AssemblyContents& contents, const AssemblyPictureOptions& o) {
+  const std::string file = results.path().string();
+  if (o.pose == AssemblyPictureOptions::Pose::Static) {
+    require(contents.has_static,
+            "'{}' has no static pose study of the elastic assembly (static_position, static_displacement, "
+            "static_displacement_magnitude on every body {})",
+            file, joined(contents.bodies));
+    return {-1, kNaN, "static pose study"};
+  }
+  const std::vector<double> times = results.series_times(contents.bodies.front());
+  require(!times.empty(), "'{}': assembly body '{}' has no time series", file, contents.bodies.front());
+  if (o.pose == AssemblyPictureOptions::Pose::Step) {
+    require(o.step >= 0 && size_t(o.step) < times.size(), "'{}': step {} is outside the {} output times (0 .. {})", file,
+            o.step, times.size(), times.size() - 1);
+    return {o.step, times[size_t(o.step)], fmt::format("step {}", o.step)};
+  }
+  auto at_peak_of = [&](const TimeHistory& h, const std::string& why) {
+    const size_t k = nearest_index(times, h.time_s[argmax(h.values.col(0))]);
+    return Pose{fem::Index(k), times[k], why};
+  };
+  if (auto h = point_magnitude(results, o.point)) return at_peak_of(*h, "largest |u| of " + o.point);
+  if (has(results.histories(), kMaxDisplacement))
+    return at_peak_of(mechanism_history(results, kMaxDisplacement), "largest assembly.max_displacement");
+  // No histories: the step of the largest displacement_magnitude over the bodies' series.
+  Eigen::VectorXd largest = Eigen::VectorXd::Zero(fem::Index(times.size()));
+  for (const auto& body : contents.bodies)
+    for (size_t k = 0; k < times.size(); ++k)
+      largest(fem::Index(k)) = std::max(
+          largest(fem::Index(k)), results.read_step(body, "displacement_magnitude", fem::Index(k)).values.maxCoeff());
+  const size_t k = argmax(largest);
+  return {fem::Index(k), times[k], "largest |u| of the series"};
+}
+
+AssemblyBody read_assembly_body(const ResultsFile& results, const std::string& body, const Pose& pose) {
+  AssemblyBody b;
+  b.name = body;
+  b.mesh = results.read_mesh(body);
+  b.faces = boundary_faces(b.mesh);
+  auto read = [&](const std::string& field, long columns) {
+    const std::string name = pose.step < 0 ? "static_" + field : field;
+    const FieldData d = pose.step < 0 ? results.read_static(body, name) : results.read_step(body, name, pose.step);
+    require(d.values.rows() == b.mesh.node_count() && d.values.cols() == columns,
+            "'{}': body '{}': field '{}' is {} x {}, expected {} x {} (nodes x components)", results.path().string(), body,
+            name, d.values.rows(), d.values.cols(), b.mesh.node_count(), columns);
+    return d.values;
+  };
+  b.position_m = read("position", 3);
+  b.displacement_m = read("displacement", 3);
+  b.magnitude_m = read("displacement_magnitude", 1).col(0);
+  return b;
+}
+
+// Where the tracked point is drawn: its rigid position from point.<body>.<P> (x, y; z = 0
+// unless a third column is there) and its elastic displacement, at the mechanism time nearest t.
+struct TrackedPoint {
+  Eigen::Vector3d rigid_m, displacement_m;
+};
+
+std::optional<TrackedPoint> tracked_point(const ResultsFile& results, const std::string& point, double t) {
+  if (std::isnan(t)) return std::nullopt;
+  const auto histories = results.histories();
+  if (!has(histories, point_history(point, "displacement"))) return std::nullopt;
+  const std::string suffix = "." + point;
+  for (const auto& name : histories) {
+    if (name.rfind("point.", 0) != 0 || name.size() <= suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const TimeHistory path = mechanism_history(results, name);
+    if (path.units != "m" || path.values.cols() < 2 || path.time_s.empty()) continue;
+    const TimeHistory u = mechanism_history(results, point_history(point, "displacement"));
+    const fem::Index i = fem::Index(nearest_index(path.time_s, t)), j = fem::Index(nearest_index(u.time_s, t));
+    TrackedPoint p;
+    p.rigid_m << path.values(i, 0), path.values(i, 1), path.values.cols() > 2 ? path.values(i, 2) : 0.0;
+    p.displacement_m = u.values.row(j).transpose().head<3>();
+    return p;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+AssemblyContents assembly_contents(const ResultsFile& results) {
+  AssemblyContents c;
+  for (const auto& body : results.bodies())
+    if (is_assembly_body(body)) c.bodies.push_back(body);
+  c.has_static = !c.bodies.empty();
+  for (const auto& body : c.bodies) {
+    const auto statics = results.static_fields(body);
+    for (const char* field : {"static_position", "static_displacement", "static_displacement_magnitude"})
+      c.has_static = c.has_static && has(statics, field);
+  }
+  const std::string prefix = kPointPrefix, suffix = ".displacement";
+  for (const auto& name : results.histories())
+    if (name.size() > prefix.size() + suffix.size() && name.rfind(prefix, 0) == 0 &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      const std::string point = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+      if (point.find(".from.") == std::string::npos) c.points.push_back(point);
+    }
+  return c;
+}
+
+AssemblyPictureInfo write_assembly_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                           const AssemblyPictureOptions& options) {
+  const AssemblyContents contents = assembly_contents(results);
+  require(!contents.bodies.empty(), "'{}' has no elastic assembly (no body named assembly.<part>; bodies: {})",
+          results.path().string(), joined(results.bodies()));
+  const Pose pose = choose_pose(results, contents, options);
+  std::vector<AssemblyBody> bodies;
+  for (const auto& name : contents.bodies) bodies.push_back(read_assembly_body(results, name, pose));
+
+  // The largest |u| (coloured and drawn) and the size of the undeformed drawing.
+  const ObliqueView view(options.oblique_depth, options.oblique_angle_deg);
+  AssemblyPictureInfo info{pose.time_s, pose.step, pose.chosen_by, 0.0, -1.0, "", -1};
+  double max_u_m = 0;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const AssemblyBody& b : bodies) {
+    Eigen::Index node = 0;
+    const double peak = b.magnitude_m.maxCoeff(&node);
+    if (peak > info.max_value) info.max_value = peak, info.max_body = b.name, info.max_node = node;
+    max_u_m = std::max(max_u_m, b.displacement_m.rowwise().norm().maxCoeff());
+    const Eigen::MatrixX2d p = view.project(b.position_m * 1e3);
+    lo = lo.cwiseMin(p.colwise().minCoeff().transpose()), hi = hi.cwiseMax(p.colwise().maxCoeff().transpose());
+  }
+  const double extent_mm = (hi - lo).maxCoeff();
+  info.deformation_scale = options.deformation_scale > 0 ? options.deformation_scale
+                           : max_u_m > 0 ? std::max(1.0, nearest_125(0.08 * extent_mm / (max_u_m * 1e3)))
+                                         : 1.0;
+  const double scale = info.deformation_scale;
+
+  // Projected rigid and deflected node positions; the panel's range covers both.
+  std::vector<Eigen::MatrixX2d> rigid, deflected;
+  std::vector<fem::NodeCoordinates> deflected_mm;
+  for (const AssemblyBody& b : bodies) {
+    rigid.push_back(view.project(b.position_m * 1e3));
+    deflected_mm.push_back((b.position_m + scale * b.displacement_m) * 1e3);
+    deflected.push_back(view.project(deflected_mm.back()));
+    lo = lo.cwiseMin(deflected.back().colwise().minCoeff().transpose());
+    hi = hi.cwiseMax(deflected.back().colwise().maxCoeff().transpose());
+  }
+  const std::optional<TrackedPoint> point = tracked_point(results, options.point, pose.time_s);
+  Eigen::Vector2d point_rigid, point_deflected;
+  if (point) {
+    auto project = [&](const Eigen::Vector3d& p_m) {
+      fem::NodeCoordinates row(1, 3);
+      row.row(0) = p_m.transpose() * 1e3;
+      return Eigen::Vector2d(view.project(row).row(0).transpose());
+    };
+    point_rigid = project(point->rigid_m);
+    point_deflected = project(point->rigid_m + scale * point->displacement_m);
+    lo = lo.cwiseMin(point_rigid).cwiseMin(point_deflected), hi = hi.cwiseMax(point_rigid).cwiseMax(point_deflected);
+  }
+  const double pad = 0.06 * std::max((hi - lo).maxCoeff(), 1e-3);
+  lo.array() -= pad, hi.array() += pad;
+
+  Canvas canvas(options.width_px, options.height_px);
+  cairo_t* cr = canvas.cr();
+  const std::string when = pose.step < 0 ? std::string("static pose study")
+                                         : fmt::format("t = {:.3f} s ({})", pose.time_s, pose.chosen_by);
+  title(cr, canvas,
+        fmt::format("{}: elastic deflection of the assembly, {}, deformation scaled x{:g}", case_name(results, options),
+                    when, scale),
+        fmt::format("{}, world axes; grey: rigid configuration; max |u| {} on {}, node {}", view.description(),
+                    mm_text(info.max_value), info.max_body, info.max_node));
+
+  // One panel, equal scales, centred in the area left of the colour bar.
+  const double font = 13, top = 80, bottom_margin = 60, left_margin = 90, bar_width = 190;
+  const double area_w = canvas.width() - left_margin - bar_width - 20, area_h = canvas.height() - top - bottom_margin;
+  const double px_per_mm = std::max(std::min(area_w / (hi.x() - lo.x()), area_h / (hi.y() - lo.y())), 1e-6);
+  const double w = (hi.x() - lo.x()) * px_per_mm, h = (hi.y() - lo.y()) * px_per_mm;
+  const Axes ax{left_margin + (area_w - w) / 2, top + (area_h - h) / 2, w, h, lo.x(), hi.x(), lo.y(), hi.y()};
+  draw_axes(cr, ax, "x [mm]", "y [mm]", font - 1, true, std::max(3, int(w / 80)), std::max(3, int(h / 60)));
+
+  cairo_save(cr);
+  clip_to(cr, ax);
+  cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
+  cairo_set_line_width(cr, 1.0);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (size_t i = 0; i < bodies.size(); ++i)
+    stroke_paths(cr, ax, outline_edges(bodies[i].faces, bodies[i].position_m, view), rigid[i]);
+  cairo_restore(cr);
+  // Links overlap at their joints, where their bosses may even share the same space (the FE
+  // model couples them there). One painter's order over both interleaves their triangles
+  // into a speckle, so each body is a layer, painted whole, in the order of its mean z
+  // (the planar mechanism's links are stacked along z; the higher one is in front).
+  std::vector<size_t> order(bodies.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](size_t i, size_t j) {
+    return deflected_mm[i].col(2).mean() < deflected_mm[j].col(2).mean();
+  });
+  std::vector<DrawnTriangle> tris;
+  for (size_t layer = 0; layer < order.size(); ++layer) {
+    const size_t i = order[layer];
+    add_visible_triangles(bodies[i].faces, deflected_mm[i], deflected[i], bodies[i].magnitude_m, view, tris, int(layer));
+  }
+  const double colour_max = info.max_value > 0 ? info.max_value : 1e-3;  // no deflection at all: a 0 .. 1 mm bar
+  paint_triangles(cr, ax, tris, colour_max);
+
+  // The node of the largest |u|, and the tracked point (labels apart where the two are close).
+  size_t max_body = 0;
+  while (bodies[max_body].name != info.max_body) ++max_body;
+  const double mx = ax.X(deflected[max_body](info.max_node, 0)), my = ax.Y(deflected[max_body](info.max_node, 1));
+  int max_dy = 0;
+  if (point) {
+    const double rx = ax.X(point_rigid.x()), ry = ax.Y(point_rigid.y());
+    const double px = ax.X(point_deflected.x()), py = ax.Y(point_deflected.y());
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    cairo_set_line_width(cr, 1.2);
+    cairo_new_path(cr);
+    cairo_move_to(cr, rx, ry);
+    cairo_line_to(cr, px, py);
+    cairo_stroke(cr);
+    cairo_arc(cr, rx, ry, 5, 0, 2 * std::numbers::pi);
+    cairo_stroke(cr);
+    int dy = 0;  // close marks: one label above, the other below
+    if (std::abs(px - mx) < 250 && std::abs(py - my) < 60) dy = py >= my ? 1 : -1, max_dy = -dy;
+    mark_point(cr, ax, px, py, fmt::format("{}: |u| {}", options.point, mm_text(point->displacement_m.norm())), font, 0,
+               dy);
+  }
+  mark_point(cr, ax, mx, my, "max |u| " + mm_text(info.max_value), font, 0, max_dy);
+
+  const double bx = canvas.width() - bar_width + 20, by = top + 40, bh = std::min(area_h - 160, 480.0);
+  draw_colour_bar(cr, bx, by, 26, bh, colour_max * 1e3, "|u|", "mm", font);
+  // Legend of the lines and marks, under the colour bar.
+  double ly = by + bh + 45;
+  cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
+  cairo_set_line_width(cr, 1.0);
+  cairo_move_to(cr, bx - 10, ly);
+  cairo_line_to(cr, bx + 16, ly);
+  cairo_stroke(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text(cr, bx + 24, ly, "rigid configuration", font - 1, 0.0, 0.5);
+  if (point) {
+    ly += 24;
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    cairo_set_line_width(cr, 1.2);
+    cairo_new_path(cr);
+    cairo_arc(cr, bx + 3, ly, 5, 0, 2 * std::numbers::pi);
+    cairo_stroke(cr);
+    text(cr, bx + 24, ly, options.point + " rigid", font - 1, 0.0, 0.5);
+    ly += 24;
+    cairo_set_line_width(cr, 2);
+    cairo_new_path(cr);
+    cairo_arc(cr, bx + 3, ly, 8, 0, 2 * std::numbers::pi);
+    cairo_stroke(cr);
+    text(cr, bx + 24, ly, options.point + " deflected", font - 1, 0.0, 0.5);
+  }
+  canvas.save(png);
+  return info;
+}
+
+PointDeflectionInfo write_point_deflection_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                                   const std::string& point, const PictureOptions& options) {
+  const std::string total_name = point_history(point, "displacement");
+  require(has(results.histories(), total_name),
+          "'{}' has no history {} (tracked points of the elastic assembly: {})", results.path().string(), total_name,
+          joined(assembly_contents(results).points));
+  const TimeHistory total = mechanism_history(results, total_name);
+  require(total.values.cols() == 3 && total.units == "m" && total.time_s.size() >= 2,
+          "'{}': history {} is not a displacement in m over 2 or more times (units '{}', {} x {})",
+          results.path().string(), total_name, total.units, total.values.rows(), total.values.cols());
+  const TimeHistory magnitude = *point_magnitude(results, point);
+  const Eigen::VectorXd u_abs = magnitude.values.col(0);
+
+  PointDeflectionInfo info;
+  const size_t peak = argmax(u_abs);
+  info.max_m = u_abs(fem::Index(peak));
+  info.time_s = magnitude.time_s[peak];
+
+  auto mm = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  const std::vector<std::string> axes = {"x", "y", "z"};
+  std::vector<Curve> components;
+  for (long c = 0; c < 3; ++c)
+    components.push_back({axes[size_t(c)], total.time_s, mm(total.values.col(c) * 1e3), kPalette[size_t(c)], false});
+  components.push_back({"|u|", magnitude.time_s, mm(u_abs * 1e3), {0.1, 0.1, 0.1}, false});
+
+  // Contributions: their component along the total's direction, c_i . u / |u|.
+  const std::string prefix = point_history(point, "from.");
+  std::vector<Curve> contributions;
+  for (const auto& name : results.histories()) {
+    if (name.rfind(prefix, 0) != 0) continue;
+    const TimeHistory c = mechanism_history(results, name);
+    require(c.values.cols() == 3 && c.values.rows() == total.values.rows(),
+            "'{}': history {} is {} x {}, expected {} x 3 like {}", results.path().string(), name, c.values.rows(),
+            c.values.cols(), total.values.rows(), total_name);
+    info.contributors.push_back(name.substr(prefix.size()));
+    std::vector<double> along(c.time_s.size());
+    for (long k = 0; k < c.values.rows(); ++k) {
+      const Eigen::Vector3d u = total.values.row(k).transpose(), ci = c.values.row(k).transpose();
+      along[size_t(k)] = u.norm() > 0 ? ci.dot(u) / u.norm() * 1e3 : 0.0;
+    }
+    std::string label = info.contributors.back();
+    if (const size_t dot = label.find('.'); dot != std::string::npos) label[dot] = ' ';
+    contributions.push_back({label, c.time_s, std::move(along), kPalette[contributions.size() % kPalette.size()], false});
+  }
+
+  Canvas canvas(options.width_px, options.height_px);
+  cairo_t* cr = canvas.cr();
+  title(cr, canvas,
+        fmt::format("{}: elastic deflection of point {} over the motion", case_name(results, options), point),
+        fmt::format("elastic assembly, world axes; max |u| = {} at t = {:.3f} s; {:.2f} .. {:.2f} s",
+                    mm_text(info.max_m), info.time_s, total.time_s.front(), total.time_s.back()));
+  const double left = 100, legend_w = 250, top = 100, bottom = 70, gap = 90;
+  const double width = canvas.width() - left - legend_w - 30;
+  const double panel_h = contributions.empty() ? canvas.height() - top - bottom
+                                               : (canvas.height() - top - bottom - gap) / 2;
+  const Axes ax = draw_curves(cr, Axes{left, top, width, panel_h, 0, 1, 0, 1}, components, "displacement [mm]",
+                              "time [s]", fmt::format("Elastic displacement of {} (world axes)", point),
+                              left + width + 25, 0.2);
+  mark_point(cr, ax, ax.X(info.time_s), ax.Y(info.max_m * 1e3),
+             fmt::format("max {} at t = {:.3f} s", mm_text(info.max_m), info.time_s), 13, 0, -1);
+  if (!contributions.empty()) {
+    contributions.push_back({"total |u|", magnitude.time_s, mm(u_abs * 1e3), {0.1, 0.1, 0.1}, true});
+    draw_curves(cr, Axes{left, top + panel_h + gap, width, panel_h, 0, 1, 0, 1}, contributions, "along u [mm]",
+                "time [s]", "Contributions, component along u (they add up to |u|)",
+                left + width + 25);
+  }
+  canvas.save(png);
+  return info;
 }
 
 }  // namespace kinetofem::post

@@ -1,6 +1,7 @@
 #include "kinetofem/structure/elastic_assembly.hpp"
 
 #include "kinetofem/structure/rigid_bore.hpp"
+#include "rigid_motion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,15 +21,12 @@ namespace kinetofem::structure {
 
 namespace {
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using detail::Matrix6d;
+using detail::skew;
+using detail::solve_columns;
+using detail::transfer;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-
-Eigen::Matrix3d skew(const Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
 
 Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Vector3d::UnitZ()).toRotationMatrix(); }
 
@@ -36,29 +34,11 @@ Vector3d lift(const Vector2d& v, double z = 0.0) { return Vector3d(v.x(), v.y(),
 
 double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Motion (translation, rotation) of a point at `arm` from a reference point
-// moving by (t, w): (t + w x arm, w) = transfer(arm) (t, w).
-Matrix6d transfer(const Vector3d& arm) {
-  Matrix6d T = Matrix6d::Identity();
-  T.block<3, 3>(0, 3) = -skew(arm);
-  return T;
-}
-
 Matrix6d rotate6(const Eigen::Matrix3d& R) {
   Matrix6d Q = Matrix6d::Zero();
   Q.block<3, 3>(0, 0) = R;
   Q.block<3, 3>(3, 3) = R;
   return Q;
-}
-
-// Columns of K_s^-1 B as 3 N vectors.
-Eigen::MatrixXd solve_columns(fem::LinearStaticAnalysis& analysis, const Eigen::MatrixXd& B) {
-  Eigen::MatrixXd X(B.rows(), B.cols());
-  if (B.cols() == 0) return X;
-  const std::vector<fem::DisplacementField> fields = analysis.solve_forces(B);
-  for (Eigen::Index c = 0; c < B.cols(); ++c)
-    X.col(c) = Eigen::Map<const Eigen::VectorXd>(fields[size_t(c)].data(), B.rows());
-  return X;
 }
 
 const char* const kComponent[6] = {"x", "y", "z", "rx", "ry", "rz"};
@@ -894,9 +874,19 @@ void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, co
       for (const JointData& jd : joints) {
         if (jd.type != mech::JointType::Revolute) continue;
         const mech::Joint& joint = model.joints[size_t(jd.joint)];
+        // A force drive (a motor torque) across the joint is a load, not a
+        // support: name it, since it is what the user thought held the joint.
+        std::string torque_only;
+        for (const mech::ForceDrive& fd : model.force_drives) {
+          const mech::RelativeCoordinate& fc = fd.coordinate;
+          if (fc.type == mech::CoordinateType::Angle &&
+              ((fc.body_i == joint.body_i && fc.body_j == joint.body_j) ||
+               (fc.body_i == joint.body_j && fc.body_j == joint.body_i)))
+            torque_only += fmt::format("; force drive '{}' applies a torque there but holds no angle", fd.name);
+        }
         candidates.push_back({std::abs(rz(jd.if_j) - rz(jd.if_i)) * Lr,
-                              fmt::format("the rotation about z at joint '{}' (between '{}' and '{}')", joint.name,
-                                          joint.body_i, joint.body_j)});
+                              fmt::format("the rotation about z at joint '{}' (between '{}' and '{}'{})", joint.name,
+                                          joint.body_i, joint.body_j, torque_only)});
       }
       for (const DriveData& dd : drives)
         if (dd.k == 0.0)

@@ -8,36 +8,17 @@
 #include <fmt/format.h>
 
 #include "kinetofem/core/error.hpp"
+#include "rigid_motion.hpp"
 
 namespace kinetofem::structure {
 
 namespace {
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using detail::Matrix6d;
+using detail::skew;
+using detail::solve_columns;
+using detail::transfer;
 using Eigen::Vector3d;
-
-Eigen::Matrix3d skew(const Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
-
-// Motion (t, theta) of a point at `arm` from a reference moving by (t, theta).
-Matrix6d transfer(const Vector3d& arm) {
-  Matrix6d X = Matrix6d::Identity();
-  X.block<3, 3>(0, 3) = -skew(arm);
-  return X;
-}
-
-// K_s^-1 of each column (3N each).
-Eigen::MatrixXd solve_columns(fem::LinearStaticAnalysis& analysis, const Eigen::MatrixXd& forces) {
-  Eigen::MatrixXd X(forces.rows(), forces.cols());
-  if (forces.cols() == 0) return X;
-  const std::vector<fem::DisplacementField> fields = analysis.solve_forces(forces);
-  for (Eigen::Index c = 0; c < forces.cols(); ++c)
-    X.col(c) = Eigen::Map<const Eigen::VectorXd>(fields[size_t(c)].data(), forces.rows());
-  return X;
-}
 
 // The inverse of a small symmetric positive definite matrix through its
 // Jacobi-scaled eigen decomposition (mixed units: translations and

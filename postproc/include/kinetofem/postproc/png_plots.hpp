@@ -2,10 +2,12 @@
 // PNG pictures of a results file, drawn with cairo (image surface, ARGB32).
 //
 // 1. write_stress_picture — a scalar field (von Mises) on the deformed
-//    boundary surface of every body at the critical time (the output time of
-//    the largest envelope value over all bodies; a body without a series shows
-//    its static field). One panel per body, in its own body frame, all at one
-//    scale in mm. View: oblique (cabinet-like) projection of the x-y plane,
+//    boundary surface of every link body at the critical time (the output time
+//    of the largest envelope value over those bodies; a body without a series
+//    shows its static field). Bodies of the elastic assembly (`assembly.*`,
+//    world-axes displacement, see 4.) are left out. One panel per body, in its
+//    own body frame, all at one scale in mm. View: oblique (cabinet-like)
+//    projection of the x-y plane,
 //        X = x + k z cos(a),  Y = y + k z sin(a)   (k = oblique_depth, a = oblique_angle),
 //    i.e. seen along v = (-k cos a, -k sin a, 1) from +z; boundary faces
 //    facing away from the viewer are culled and the rest drawn far to near
@@ -19,10 +21,33 @@
 // 3. write_path_picture — a 2-component history in m (the gripper point H) as
 //    an x-y path in mm, equal aspect, start and end marked, dots at tenths of
 //    the motion time.
+// 4. write_assembly_picture — the manipulator as one elastic structure: every
+//    body `assembly.<b>` in ONE panel in world axes (the same oblique view of
+//    the world x-y plane as 1.; oblique_depth = 0 gives the plain x-y view
+//    from +z), the boundary surface at position + scale * displacement
+//    coloured by displacement_magnitude in mm, the rigid configuration
+//    (position alone) as a thin grey outline behind it (silhouette and crease
+//    edges). One output step: the static pose study (static_* fields), a given
+//    step, or by default the step of the largest |u| of a tracked point
+//    (history assembly.point.<P>.displacement_magnitude; fallback
+//    assembly.max_displacement, then the largest displacement_magnitude of the
+//    series). Automatic scale: the 1/2/5 x 10^k factor (at least 1) nearest,
+//    on a log scale, to the one that draws the largest |u| at 8 % of the
+//    larger side of the undeformed drawing. Marked: the node of the largest
+//    |u|, and the tracked point where its rigid path point.<body>.<P> (x, y;
+//    z = 0) is in the file (not for the static pose, whose position of P is
+//    not written): rigid (small hollow circle) and deflected (labelled ring).
+// 5. write_point_deflection_picture — a tracked point's elastic displacement
+//    in the assembly (assembly.point.<P>.displacement, world axes) over the
+//    motion in mm: x, y, z and |u| against time, the maximum marked; below,
+//    each contribution assembly.point.<P>.from.<contributor> as its component
+//    along the total's direction at each time, c_i . u/|u| (0 where u = 0),
+//    so the lines add up to |u| (drawn dashed with them).
 //
 // Every function throws Error naming the file or the missing data.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "kinetofem/solver/mesh.hpp"
 
@@ -36,12 +61,16 @@ struct PictureOptions {
   int height_px = 900;
 };
 
+// The oblique view of 1. and 4. (k and a above).
+inline constexpr double kObliqueDepth = 0.5;
+inline constexpr double kObliqueAngleDeg = 40.0;
+
 struct StressPictureOptions : PictureOptions {
   std::string field = "von_mises";  // scalar, Pa
   std::string displacement_field = "displacement";
   double deformation_scale = 0.0;    // 0: automatic (a "nice" 1/2/5 x 10^k factor)
-  double oblique_depth = 0.5;        // k
-  double oblique_angle_deg = 40.0;   // a
+  double oblique_depth = kObliqueDepth;
+  double oblique_angle_deg = kObliqueAngleDeg;
 };
 
 struct StressPictureInfo {
@@ -62,5 +91,52 @@ void write_mechanism_loads_picture(const ResultsFile& results, const std::filesy
 void write_path_picture(const ResultsFile& results, const std::filesystem::path& png,
                         const std::string& history = "gripper_point_H",
                         const PictureOptions& options = {});
+
+// What a results file holds of the elastic assembly (docs/results.md).
+struct AssemblyContents {
+  std::vector<std::string> bodies;  // "assembly.<b>", name order
+  bool has_static = false;          // every assembly body has static_position, static_displacement(_magnitude)
+  std::vector<std::string> points;  // P of every history assembly.point.<P>.displacement
+};
+AssemblyContents assembly_contents(const ResultsFile& results);
+
+struct AssemblyPictureOptions : PictureOptions {
+  enum class Pose {
+    LargestDeflection,  // the output step of the largest |u| of `point` (fallbacks: see 4.)
+    Step,               // the output step `step`
+    Static,             // the static pose study; Error naming the file if it has none
+  };
+  Pose pose = Pose::LargestDeflection;
+  fem::Index step = 0;
+  std::string point = "H";
+  double deformation_scale = 0.0;  // 0: automatic
+  double oblique_depth = kObliqueDepth;
+  double oblique_angle_deg = kObliqueAngleDeg;
+};
+
+struct AssemblyPictureInfo {
+  double time_s;             // NaN: the static pose study
+  fem::Index step;           // index into the series times; -1: static
+  std::string chosen_by;     // why this step, e.g. "largest |u| of H", "step 3", "static pose study"
+  double deformation_scale;  // as drawn
+  double max_value;          // largest displacement_magnitude shown, m
+  std::string max_body;      // its body ("assembly.<b>") and node
+  fem::Index max_node;
+};
+
+AssemblyPictureInfo write_assembly_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                           const AssemblyPictureOptions& options = {});
+
+struct PointDeflectionInfo {
+  double max_m;                           // largest |u| of the point over the motion, m
+  double time_s;                          // when (first on a tie)
+  std::vector<std::string> contributors;  // as in the file: "part.<b>", "chain.<c>", "drive.<d>"
+};
+
+// Throws Error naming the file and the tracked points it has if there is no
+// history assembly.point.<point>.displacement.
+PointDeflectionInfo write_point_deflection_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                                   const std::string& point = "H",
+                                                   const PictureOptions& options = {});
 
 }  // namespace kinetofem::post
