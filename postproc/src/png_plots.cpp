@@ -464,7 +464,7 @@ double nearest_125(double x) {
 }
 
 // Bodies of the elastic assembly ("assembly.<b>"): world-axes displacement, drawn by write_assembly_picture.
-constexpr std::string_view kAssemblyBodyPrefix = "assembly.";
+constexpr std::string_view kAssemblyBodyPrefix = layout::kAssemblyBodyPrefix;
 bool is_assembly_body(const std::string& body) { return body.rfind(kAssemblyBodyPrefix, 0) == 0; }
 
 struct BodyView {
@@ -809,8 +809,8 @@ void write_path_picture(const ResultsFile& results, const std::filesystem::path&
 namespace {
 
 // Names the pipeline's assembly stage writes (docs/results.md, "The elastic assembly").
-constexpr const char* kPointPrefix = "assembly.point.";
-constexpr const char* kMaxDisplacement = "assembly.max_displacement";
+constexpr const char* kPointPrefix = layout::kAssemblyPointPrefix;
+constexpr const char* kMaxDisplacement = layout::kAssemblyMaxDisplacement;
 std::string point_history(const std::string& point, const std::string& what) { return kPointPrefix + point + "." + what; }
 
 bool has(const std::vector<std::string>& names, const std::string& name) {

@@ -9,6 +9,7 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
 
 namespace kinetofem::structure {
 
@@ -66,7 +67,7 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
   std::vector<int> part_body(parts.size());
   for (size_t p = 0; p < parts.size(); ++p) {
     const fem::Mesh& mesh = parts[p].model.mesh;
-    post::BodyWriter& w = writer.add_body("assembly." + parts[p].body(), mesh);
+    post::BodyWriter& w = writer.add_body(post::layout::kAssemblyBodyPrefix + parts[p].body(), mesh);
     w.begin_series({{.name = "position", .units = "m", .components = 3, .component_names = post::kVectorComponents,
                      .geometry = true},
                     {"displacement", "m", 3, post::kVectorComponents},
@@ -217,9 +218,9 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
     }
   }
 
-  writer.write_history("assembly.max_displacement", "m", max_u);
+  writer.write_history(post::layout::kAssemblyMaxDisplacement, "m", max_u);
   for (size_t i = 0; i < P; ++i) {
-    const std::string base = "assembly.point." + options.points[i].name;
+    const std::string base = post::layout::kAssemblyPointPrefix + options.points[i].name;
     writer.write_history(base + ".displacement", "m", point_u[i], post::kVectorComponents);
     writer.write_history(base + ".displacement_magnitude", "m", point_mag[i]);
     writer.write_history(base + ".rotation", "rad", point_rot[i], post::kVectorComponents);

@@ -73,6 +73,12 @@ inline constexpr const char* kDimensionless = "1";
 // (SeriesField::geometry).
 inline constexpr const char* kXdmfGeometry = "xdmf_geometry";
 
+// The elastic assembly (structure/assembly_over_motion.hpp): its bodies are
+// "assembly.<b>", its histories "assembly.*" (docs/results.md).
+inline constexpr const char* kAssemblyBodyPrefix = "assembly.";
+inline constexpr const char* kAssemblyPointPrefix = "assembly.point.";      // + <P>.displacement, ...
+inline constexpr const char* kAssemblyMaxDisplacement = "assembly.max_displacement";
+
 // "block_<i>", the group of element block i (blocks keep their order).
 std::string block_name(size_t index);
 }  // namespace layout
