@@ -10,6 +10,7 @@ namespace kinetofem::app {
 namespace {
 
 using Type = KeySpec::Type;
+constexpr long kDefaultStrands = 1;  // a simplex chain
 
 void add_common(std::vector<KeySpec>& s, bool enabled_by_default, const char* enabled_doc) {
   s.push_back({.path = "assembly.enabled", .type = Type::Boolean, .default_number = enabled_by_default ? 1.0 : 0.0,
@@ -40,7 +41,7 @@ void add_manipulator_assembly_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "assembly.chain_ea_per_strand_n", .type = Type::Number, .unit = "N",
                .default_number = kDefaultManipulatorChain.ea_per_strand_n, .min = 0, .min_exclusive = true,
                .doc = "lever-chain: axial stiffness EA of one chain strand (default: ISO 606 08B-1, see the case README)"});
-  s.push_back({.path = "assembly.chain_strands", .type = Type::Integer, .default_number = 1, .min = 1, .max = 3,
+  s.push_back({.path = "assembly.chain_strands", .type = Type::Integer, .default_number = double(kDefaultStrands), .min = 1, .max = 3,
                .doc = "lever-chain: strands of the chain (simplex 1, duplex 2, triplex 3); EA = strands x per strand"});
   s.push_back({.path = "assembly.drive_stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
                .min_exclusive = true,
@@ -57,9 +58,14 @@ std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFi
   if (!chain_name.empty()) {
     o.chains.push_back({chain_name, chain_ea(c, "assembly.chain_ea_per_strand_n", "assembly.chain_strands", 0)});
   } else {
-    for (const char* key : {"assembly.chain_ea_per_strand_n", "assembly.chain_strands"})
-      require(!c.has(key), "{}: the lever manipulator has no chain (this key is for mechanism.type = \"lever_chain\")",
-              c.where(key));
+    // Keys at their defaults (as `kinetofem case --template` writes them) say
+    // nothing; another value would be silently unused.
+    const auto unused = [&](const char* key, double at_default) {
+      require(!c.has(key) || c.number(key) == at_default,
+              "{}: the lever manipulator has no chain (this key is for mechanism.type = \"lever_chain\")", c.where(key));
+    };
+    unused("assembly.chain_ea_per_strand_n", kDefaultManipulatorChain.ea_per_strand_n);
+    unused("assembly.chain_strands", double(kDefaultStrands));
   }
   if (c.has("assembly.drive_stiffness_n_m_per_rad")) {
     const double k = c.number("assembly.drive_stiffness_n_m_per_rad");
@@ -77,7 +83,7 @@ void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
              "and chain joints, angle drives)");
   s.push_back({.path = "joint[].ea_per_strand_n", .type = Type::Number, .unit = "N", .min = 0, .min_exclusive = true,
                .doc = "chain, elastic assembly: axial stiffness EA of one strand (required when the assembly is on)"});
-  s.push_back({.path = "joint[].strands", .type = Type::Integer, .default_number = 1, .min = 1, .max = 3,
+  s.push_back({.path = "joint[].strands", .type = Type::Integer, .default_number = double(kDefaultStrands), .min = 1, .max = 3,
                .doc = "chain, elastic assembly: number of strands; EA = strands x per strand"});
   s.push_back({.path = "motion_drive[].stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
                .min_exclusive = true,
@@ -114,8 +120,22 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
     return std::nullopt;
   }
   require(!bodies_with_parts.empty(),
-          "{}: assembly.enabled = true, but no body has a [[part]]: the elastic assembly needs at least one FE part",
+          "{} = true, but no body has a [[part]]: the elastic assembly needs at least one FE part",
           c.where("assembly.enabled"));
+  // What the elastic model does not hold, said here with its key and line
+  // rather than after the motion and the parts' stress (ElasticAssembly checks
+  // it again for other callers).
+  for (std::size_t k = 0; k < c.count("joint"); ++k)
+    require(c.text_value("joint[].type", k) != "prismatic",
+            "{} = \"prismatic\": joint '{}': the elastic assembly models revolute, fixed and chain joints only "
+            "(leave assembly.enabled = false for this linkage)",
+            c.where("joint[].type", k), c.text_value("joint[].name", k));
+  for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
+    require(c.text_value("motion_drive[].coordinate", k) == "angle",
+            "{} = \"{}\": drive '{}': the elastic assembly models angle drives only (leave assembly.enabled = "
+            "false for this linkage)",
+            c.where("motion_drive[].coordinate", k), c.text_value("motion_drive[].coordinate", k),
+            c.text_value("motion_drive[].name", k));
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
   for (std::size_t k = 0; k < c.count("joint"); ++k) {
@@ -136,11 +156,22 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
     structure::TrackedPoint p{c.text_value("assembly_point[].name", k), c.text_value("assembly_point[].body", k),
                               c.text_value("assembly_point[].point", k),
                               c.has("assembly_point[].face", k) ? c.text_value("assembly_point[].face", k) : std::string()};
+    // Wrong names list the names that exist, as everywhere in a linkage case.
     const auto body = std::find_if(model.bodies.begin(), model.bodies.end(), [&](const mech::Body& b) { return b.name == p.body; });
-    require(body != model.bodies.end(), "{} = \"{}\": no [[body]] has this name", c.where("assembly_point[].body", k), p.body);
+    if (body == model.bodies.end()) {
+      std::string names;
+      for (const auto& b : model.bodies)
+        if (!b.fixed) names += (names.empty() ? "" : ", ") + b.name;
+      fail("{} = \"{}\": no moving body of that name (moving bodies: {})", c.where("assembly_point[].body", k), p.body,
+           names);
+    }
     require(!body->fixed, "{} = \"{}\": the ground does not move; name a moving body", c.where("assembly_point[].body", k), p.body);
-    require(p.point == "origin" || body->points.contains(p.point), "{} = \"{}\": body '{}' has no such point",
-            c.where("assembly_point[].point", k), p.point, p.body);
+    if (p.point != "origin" && !body->points.contains(p.point)) {
+      std::string names = "origin";
+      for (const auto& [n, at] : body->points) names += ", " + n;
+      fail("{} = \"{}\": body '{}' has no point of that name (points: {})", c.where("assembly_point[].point", k), p.point,
+           p.body, names);
+    }
     const bool on_part = std::find(bodies_with_parts.begin(), bodies_with_parts.end(), p.body) != bodies_with_parts.end();
     require(!on_part || !p.face_set.empty(), "{}: point '{}' is on body '{}', which has a part: name the face set that carries it (face = \"...\")",
             c.where("assembly_point[].name", k), p.name, p.body);

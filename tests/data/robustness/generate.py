@@ -393,6 +393,195 @@ add("trapezoid_zero_accel_fraction_manipulator", {"case.toml": sub(MAN, 'law = "
 add("negative_initial_step", {"case.toml": sub(LINK, "output_times = 3", "output_times = 3\ninitial_step_s = -1.0e-3"), "crank.geo": G})
 add("part_unit_too_large_for_mesh", {"case.toml": sub(LINK, 'length_unit = "mm"', 'length_unit = "m"'), "crank.geo": G})
 
+# --- the elastic assembly (issue 12): [assembly] keys of both case types, the
+# stiffness keys of a linkage's chains and drives, [[assembly_point]], and
+# linkages the elastic model cannot hold. The manipulator base MAN runs the
+# assembly by default (assembly.enabled = true).
+def man_assembly(keys, base=MAN):
+    return base + "\n[assembly]\n" + keys + "\n"
+LEVER_MAN = sub(sub(MAN, 'type = "lever_chain"', 'type = "lever"'), "stroke_deg = 80.0", "stroke_deg = 30.0")
+# The lever-chain manipulator of cases/mechanisms/lever_chain_linkage as a
+# linkage with the manipulator's parametric parts (lever, arm_with_roller: the
+# face sets of pipeline/manipulator_preset.cpp), the face keys on every joint,
+# drive and point mass, the assembly on; 11 output times (the kinematic check before meshing
+# assembles pose after pose: 3 output times, 40 deg apart, are too far apart). Valid as it
+# stands (checked by hand: it runs in about 1 s).
+CHAIN = """[case]
+name = "r"
+type = "linkage"
+
+[[body]]
+name = "frame"
+fixed = true
+
+[[body]]
+name = "lever"
+mass_kg = 10.66
+inertia_kgm2 = 0.359
+com_mm = [0.0, 250.0]
+
+[[body]]
+name = "arm"
+mass_kg = 10.94
+inertia_kgm2 = 0.253
+com_mm = [-146.1, 8.8]
+pose_mm_deg = [0.0, 500.0, 0.0]
+
+[[point]]
+body = "frame"
+name = "B0"
+at_mm = [75.0, 88.23529411764706]
+
+[[point]]
+body = "lever"
+name = "A"
+at_mm = [0.0, 500.0]
+
+[[point]]
+body = "arm"
+name = "H"
+at_mm = [-350.0, 100.0]
+
+[[part]]
+body = "lever"
+source = "lever"
+
+[[part]]
+body = "arm"
+source = "arm_with_roller"
+
+[[point_mass]]
+body = "arm"
+name = "gripper"
+mass_kg = 20.0
+at_point = "H"
+face = "gripper_mount"
+
+[[joint]]
+name = "A0"
+type = "revolute"
+body_i = "frame"
+body_j = "lever"
+face_j = "bore_A0"
+
+[[joint]]
+name = "A"
+type = "revolute"
+body_i = "lever"
+point_i = "A"
+body_j = "arm"
+face_i = "bore_A"
+face_j = "bore_A"
+
+[[joint]]
+name = "chain"
+type = "chain"
+body_i = "frame"
+point_i = "B0"
+body_j = "arm"
+radius_mm = 75.0
+wrap = "ccw"
+face_j = "roller_rim"
+ea_per_strand_n = 5.0e6
+
+[[motion_drive]]
+name = "lever_drive"
+coordinate = "angle"
+body_i = "frame"
+body_j = "lever"
+face_j = "bore_A0"
+law = "polynomial345"
+stroke_deg = 80.0
+duration_s = 2.0
+
+[[assembly_point]]
+name = "H"
+body = "arm"
+point = "H"
+face = "gripper_mount"
+
+[assembly]
+enabled = true
+
+[mesh]
+element_size_mm = 20.0
+order = 1
+
+[simulation]
+duration_s = 2.0
+output_times = 11
+"""
+# A crank (a "lever" part, bores bore_A0 at the origin and bore_A on +x) on a
+# pin O, turned by a DC motor: nothing but a torque holds its rotation. Valid
+# with assembly.enabled = false (checked by hand).
+FREE_CRANK = """[case]
+name = "r"
+type = "linkage"
+
+[[body]]
+name = "ground"
+fixed = true
+
+[[body]]
+name = "crank"
+
+[[part]]
+body = "crank"
+""" + LEVER_PART + """
+[[joint]]
+name = "O"
+type = "revolute"
+body_i = "ground"
+body_j = "crank"
+face_j = "bore_A0"
+
+[[force_drive]]
+name = "motor"
+body_i = "ground"
+body_j = "crank"
+face_j = "bore_A0"
+law = "dc_motor"
+stall_torque_nm = 20.0
+no_load_speed_rpm = 300.0
+
+[assembly]
+enabled = true
+
+[mesh]
+element_size_mm = 20.0
+order = 1
+
+[simulation]
+duration_s = 0.01
+output_times = 3
+"""
+# The rigid lever-chain linkage (no parts), as cases/mechanisms/lever_chain_linkage.
+CHAIN_RIGID = sub(sub(CHAIN, '[[part]]\nbody = "lever"\nsource = "lever"\n\n[[part]]\nbody = "arm"\nsource = "arm_with_roller"\n\n', ""), '[[assembly_point]]\nname = "H"\nbody = "arm"\npoint = "H"\nface = "gripper_mount"\n\n', "")
+for face in ('face_j = "bore_A0"\n', 'face_i = "bore_A"\n', 'face_j = "bore_A"\n', 'face_j = "roller_rim"\n', 'face = "gripper_mount"\n'):
+    CHAIN_RIGID = CHAIN_RIGID.replace(face, "")
+
+E.update({'assembly_chain_ea_zero_manipulator': "case.toml:31: key 'assembly.chain_ea_per_strand_n' = 0 N is out of range: must be >0 N", 'assembly_chain_ea_negative_manipulator': "case.toml:31: key 'assembly.chain_ea_per_strand_n' = -5e+06 N is out of range: must be >0 N", 'assembly_chain_ea_inf_manipulator': "case.toml:31: key 'assembly.chain_ea_per_strand_n' = inf is not a finite number", 'assembly_chain_ea_nan_manipulator': "case.toml:31: key 'assembly.chain_ea_per_strand_n' = nan is not a finite number", 'assembly_chain_strands_zero_manipulator': "case.toml:31: key 'assembly.chain_strands' = 0 is out of range: must be >=1 and <=3", 'assembly_drive_stiffness_zero_manipulator': "case.toml:31: key 'assembly.drive_stiffness_n_m_per_rad' = 0 N*m/rad is out of range: must be >0 N*m/rad", 'assembly_drive_stiffness_inf_manipulator': "case.toml:31: key 'assembly.drive_stiffness_n_m_per_rad' = inf is not a finite number", 'assembly_coupling_unknown_manipulator': 'case.toml:31: key \'assembly.coupling\' = "rigid" is not allowed: use one of "distributing", "rigid_bore"', 'assembly_chain_keys_on_lever_manipulator': 'case.toml:31: key \'assembly.chain_ea_per_strand_n\': the lever manipulator has no chain (this key is for mechanism.type = "lever_chain")', 'assembly_linkage_without_parts': "case.toml:76: key 'assembly.enabled' = true, but no body has a [[part]]: the elastic assembly needs at least one FE part", 'assembly_chain_without_ea': "case.toml:69: key 'joint[2].name': chain 'chain' needs ea_per_strand_n (its axial stiffness EA, N) for the elastic assembly", 'assembly_ea_on_revolute_joint': "case.toml:66: key 'joint[1].ea_per_strand_n': only a chain joint has an axial stiffness (this joint is revolute)", 'assembly_drive_stiffness_without_assembly': "case.toml:87: key 'motion_drive[0].stiffness_n_m_per_rad': set assembly.enabled = true to use it (the drive's stiffness only enters the elastic assembly)", 'assembly_point_on_part_without_face': 'case.toml:90: key \'assembly_point[0].name\': point \'H\' is on body \'arm\', which has a part: name the face set that carries it (face = "...")', 'assembly_point_on_unknown_body': 'case.toml:91: key \'assembly_point[0].body\' = "gripper": no moving body of that name (moving bodies: lever, arm)', 'assembly_prismatic_joint': 'case.toml:65: key \'joint[3].type\' = "prismatic": joint \'guide\': the elastic assembly models revolute, fixed and chain joints only (leave assembly.enabled = false for this linkage)', 'assembly_crank_held_by_motor_torque': "case.toml: the elastic assembly cannot be solved or written: elastic assembly at t = 0 s: the structure is a mechanism (rank 22 of 23 unknowns): nothing holds the rotation about z at joint 'O' (between 'ground' and 'crank'; force drive 'motor' applies a torque there but holds no angle); hold it by a motion drive (rigid or with a stiffness), a chain or another joint", 'assembly_displacement_drive': 'case.toml:75: key \'motion_drive[0].coordinate\' = "displacement": drive \'lever_drive\': the elastic assembly models angle drives only (leave assembly.enabled = false for this linkage)'})
+add("assembly_chain_ea_zero_manipulator", {"case.toml": man_assembly("chain_ea_per_strand_n = 0.0")})
+add("assembly_chain_ea_negative_manipulator", {"case.toml": man_assembly("chain_ea_per_strand_n = -5.0e6")})
+add("assembly_chain_ea_inf_manipulator", {"case.toml": man_assembly("chain_ea_per_strand_n = inf")})
+add("assembly_chain_ea_nan_manipulator", {"case.toml": man_assembly("chain_ea_per_strand_n = nan")})
+add("assembly_chain_strands_zero_manipulator", {"case.toml": man_assembly("chain_strands = 0")})
+add("assembly_drive_stiffness_zero_manipulator", {"case.toml": man_assembly("drive_stiffness_n_m_per_rad = 0.0")})
+add("assembly_drive_stiffness_inf_manipulator", {"case.toml": man_assembly("drive_stiffness_n_m_per_rad = inf")})
+add("assembly_coupling_unknown_manipulator", {"case.toml": man_assembly('coupling = "rigid"')})
+add("assembly_chain_keys_on_lever_manipulator", {"case.toml": man_assembly("chain_ea_per_strand_n = 1.0e7", LEVER_MAN)})
+add("assembly_linkage_without_parts", {"case.toml": CHAIN_RIGID})
+add("assembly_chain_without_ea", {"case.toml": sub(CHAIN, "ea_per_strand_n = 5.0e6\n", "")})
+add("assembly_ea_on_revolute_joint", {"case.toml": sub(CHAIN, 'face_i = "bore_A"\n', 'face_i = "bore_A"\nea_per_strand_n = 5.0e6\n')})
+add("assembly_drive_stiffness_without_assembly", {"case.toml": sub(sub(CHAIN, "ea_per_strand_n = 5.0e6\n", ""), "[assembly]\nenabled = true\n", "[assembly]\nenabled = false\n").replace('[[assembly_point]]\nname = "H"\nbody = "arm"\npoint = "H"\nface = "gripper_mount"\n\n', "").replace('duration_s = 2.0\n\n', 'duration_s = 2.0\nstiffness_n_m_per_rad = 1.0e5\n\n', 1)})
+add("assembly_point_on_part_without_face", {"case.toml": sub(CHAIN, 'body = "arm"\npoint = "H"\nface = "gripper_mount"\n', 'body = "arm"\npoint = "H"\n')})
+add("assembly_point_on_unknown_body", {"case.toml": sub(CHAIN, 'name = "H"\nbody = "arm"\npoint = "H"', 'name = "H"\nbody = "gripper"\npoint = "H"')})
+add("assembly_prismatic_joint", {"case.toml": sub(LINK, "[mesh]", "[assembly]\nenabled = true\n\n[mesh]"), "crank.geo": G})
+add("assembly_crank_held_by_motor_torque", {"case.toml": FREE_CRANK})
+# The lever, rigid, driven by the x displacement of its pin A (0 to -300 mm: it turns 36.9 deg ccw).
+RIGID_LEVER = sub(sub(CHAIN, '[[part]]\nbody = "lever"\nsource = "lever"\n\n', ""), 'face_i = "bore_A"\n', "").replace('body_j = "lever"\nface_j = "bore_A0"\n', 'body_j = "lever"\n')
+add("assembly_displacement_drive", {"case.toml": sub(sub(RIGID_LEVER, 'coordinate = "angle"\nbody_i = "frame"\nbody_j = "lever"\n', 'coordinate = "displacement"\nbody_i = "frame"\nbody_j = "lever"\npoint_j = "A"\n'), "stroke_deg = 80.0", "stroke_mm = -300.0")})
+
 VALID = {"valid_cube": {"case.toml": CUBE, "cube.msh": cube_msh()}}
 
 os.makedirs(ROOT, exist_ok=True)
