@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds kinetofem with AddressSanitizer + UndefinedBehaviorSanitizer (clang,
 # the instrumented tree of scripts/configure-instrumented.sh, build-asan/) and
-# runs the test suite there (ctest -LE large). Any sanitizer report fails the
+# runs the test suite there (ctest -LE large, less the long runs named below).
+# Any sanitizer report fails the
 # test that triggered it. Extra arguments go to ctest (e.g. -R robustness).
 #   KINETOFEM_JOBS   parallel jobs (default: nproc)
 #   BUILD_DIR        build folder (default: build-asan)
@@ -22,8 +23,18 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:dete
 export LD_PRELOAD="$(cd "$build" && pwd)/tests/libkinetofem_keep_libraries_loaded.so"
 export LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/tests/sanitizers/ubsan.supp"
+# Left out here, run in the release stage only: long runs (20-75 s each under
+# ASan, 9.6 min of the stage's CPU together) whose code the instrumented
+# tests also run on smaller models: the presets' regression numbers, the AMG
+# path of a manipulator, timing tests on finer meshes, the STEP linkage case,
+# the linkage-vs-preset comparison, the verify suite a second time from a
+# copied program, a kill-timing test, ParaView's own Python reading files.
+# Keeps CI under its time limit; KINETOFEM_SANITIZER_SKIP="" runs them too.
+skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.)'}
+exclude=()
+[[ -n $skip ]] && exclude=(-E "$skip")
 status=0
-(cd "$build" && ctest -LE large --output-on-failure -j "$jobs" "$@") || status=$?
+(cd "$build" && ctest -LE large "${exclude[@]}" --output-on-failure -j "$jobs" "$@") || status=$?
 end=$(date +%s)
 echo "test-sanitizers: build $((built - start)) s, tests $((end - built)) s, total $((end - start)) s"
 exit $status
