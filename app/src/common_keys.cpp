@@ -2,6 +2,11 @@
 
 #include "kinetofem/core/error.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include <toml++/toml.h>
+
 namespace kinetofem::app {
 
 std::vector<KeySpec> material_keys() {
@@ -103,14 +108,66 @@ meshes::MeshOptions read_part_mesh_options(const CaseFile& c, const std::filesys
 std::vector<KeySpec> motion_solver_keys() {
   const loads::LinkStressOptions defaults;
   return {{.path = "solver.block_size", .type = KeySpec::Type::Integer, .default_number = double(defaults.block_size),
-           .min = 1, .max = 100000, .doc = "right-hand sides per block solve over the motion"}};
+           .min = 1, .max = 100000, .doc = "right-hand sides per block solve over the motion"},
+          {.path = "solver.load_path", .type = KeySpec::Type::String, .default_text = "auto",
+           .allowed = {"auto", "superposition", "step_by_step"},
+           .doc = "how the parts' stress over the motion is computed: unit-load superposition (the load patterns "
+                  "solved once, every output time a combination; exact), step by step (one solve per output "
+                  "time), or auto (superposition unless a part has a bearing-pressure pin)"},
+          {.path = "output.field_every", .type = KeySpec::Type::Integer, .default_number = 1, .min = 0, .max = 1e9,
+           .doc = "full fields (displacement, von Mises) in the results file at every k-th output time (first "
+                  "included; 0: none). Envelopes, hot spots and histories cover every output time"},
+          {.path = "output.field_times_s", .type = KeySpec::Type::Array, .unit = "s",
+           .doc = "full fields at these times instead (s, within the motion; each becomes an output time)"}};
 }
 
 loads::LinkStressOptions read_stress_options(const CaseFile& c) {
   loads::LinkStressOptions options;
   options.block_size = int(c.integer("solver.block_size"));
+  const std::string path = c.text_value("solver.load_path");
+  options.load_path = path == "superposition" ? loads::LoadPath::Superposition
+                      : path == "step_by_step" ? loads::LoadPath::StepByStep
+                                               : loads::LoadPath::Auto;
   options.solver = read_solver_options(c);
   return options;
+}
+
+std::vector<bool> read_field_output_steps(const CaseFile& c, std::vector<double>& times) {
+  require(!times.empty(), "{}: no output times", c.path().string());
+  const double start = times.front(), end = times.back();
+  if (c.has("output.field_times_s")) {
+    const toml::array* list = c.node("output.field_times_s")->as_array();
+    require(list != nullptr && !list->empty(), "{}: give a list of times in s, e.g. [0.5, 1.0]",
+            c.where("output.field_times_s"));
+    std::vector<double> asked;
+    for (const auto& element : *list) {
+      const std::optional<double> t = element.value<double>();
+      require(t.has_value() && std::isfinite(*t), "{}: every element must be a time in s",
+              c.where("output.field_times_s"));
+      require(*t >= start && *t <= end, "{}: {} s is outside the motion [{}, {}] s", c.where("output.field_times_s"),
+              *t, start, end);
+      asked.push_back(*t);
+    }
+    // Each asked time is an output time: the nearest one if it is that within
+    // round-off, else a new one.
+    const double tolerance = 1e-9 * std::max(end - start, 1e-300);
+    std::vector<double> merged = times;
+    for (const double t : asked) {
+      const bool present = std::any_of(merged.begin(), merged.end(), [&](double u) { return std::abs(u - t) <= tolerance; });
+      if (!present) merged.push_back(t);
+    }
+    std::sort(merged.begin(), merged.end());
+    times = merged;
+    std::vector<bool> mask(times.size(), false);
+    for (size_t k = 0; k < times.size(); ++k)
+      mask[k] = std::any_of(asked.begin(), asked.end(), [&](double t) { return std::abs(times[k] - t) <= tolerance; });
+    return mask;
+  }
+  const long every = c.integer("output.field_every");
+  if (every == 1) return {};  // all
+  std::vector<bool> mask(times.size(), false);
+  for (size_t k = 0; every > 0 && k < times.size(); k += size_t(every)) mask[k] = true;
+  return mask;
 }
 
 std::vector<KeySpec> lever_chain_dimension_keys(const std::string& prefix) {

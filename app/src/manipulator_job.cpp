@@ -166,6 +166,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   run_case.material = read_material(c);
   run_case.mesh = read_part_mesh_options(c, options.output_dir);
   run_case.stress = read_stress_options(c);
+  run_case.stress.callback_steps = read_field_output_steps(c, run_case.times);
   run_case.results_file = mechanism_results_path(c, options, name);
   run_case.provenance = mechanism_provenance(c, options);
 

@@ -99,6 +99,7 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
       for (const auto& f : factorized) shared.push_back(&f->analysis());
       structure::AssemblyOptions options = *c.assembly;
       options.solver = c.stress.solver;
+      options.field_steps = c.stress.callback_steps;
       return structure::analyse_assembly_over_motion(parts, run.model, run.motion.frames, run.static_pose, writer,
                                                      options, log, shared);
     });

@@ -70,7 +70,8 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
               "link '{}': joint '{}': a bearing pressure needs a revolute (pin) joint", link.body,
               joint.name);
     mesh.face_set(attachment.face_set);  // throws naming the sets present
-    a.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    a.coupling = coupling_on(attachment.face_set);
+    has_bearing_pressure_ = has_bearing_pressure_ || a.distribution == BoreLoad::BearingPressure;
     a.revolute = joint.type == mech::JointType::Revolute;
     joints_.push_back(std::move(a));
   }
@@ -86,7 +87,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
       }
     require(found, "link '{}': the body carries no point mass '{}'", link.body,
             attachment.point_mass);
-    m.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    m.coupling = coupling_on(attachment.face_set);
     masses_.push_back(std::move(m));
   }
   for (const auto& attachment : link.drives) {
@@ -114,7 +115,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     require(coordinate->body_i == link.body || coordinate->body_j == link.body,
             "link '{}': drive '{}' does not act on it", link.body, d.name);
     d.on_j = coordinate->body_j == link.body;
-    d.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    d.coupling = coupling_on(attachment.face_set);
     drives_.push_back(std::move(d));
   }
   auto body_of = [&](const std::string& name) {
@@ -148,7 +149,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
             s.name);
     s.on_i = sp.body_i == link.body;
     s.point_body = lift(s.on_i ? spring_point_i_[size_t(s.spring_index)] : spring_point_j_[size_t(s.spring_index)]);
-    s.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    s.coupling = coupling_on(attachment.face_set);
     springs_.push_back(std::move(s));
   }
   for (const auto& attachment : link.point_forces) {
@@ -161,12 +162,26 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     require(found->body == link.body, "link '{}': point force '{}' acts on body '{}'", link.body, f.name, found->body);
     f.force_world = lift(found->force_world);
     f.point_body = lift(point_of(body_index_, found->point));
-    f.coupling = std::make_unique<fem::DistributingCoupling>(mesh, attachment.face_set);
+    f.coupling = coupling_on(attachment.face_set);
     point_forces_.push_back(std::move(f));
+  }
+  const Eigen::MatrixXd& basis = motion_loads_.basis();
+  for (int k = 0; k < 12; ++k) {
+    Eigen::Vector3d F, M;
+    fem::resultant(mesh, basis.col(k), Eigen::Vector3d::Zero(), F, M);
+    body_force_resultants_.col(k) << F, M;
   }
 }
 
-LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
+int LinkLoads::coupling_on(const std::string& face_set) {
+  for (size_t j = 0; j < coupling_face_sets_.size(); ++j)
+    if (coupling_face_sets_[j] == face_set) return int(j);
+  couplings_.push_back(std::make_unique<fem::DistributingCoupling>(link_.model->mesh, face_set));
+  coupling_face_sets_.push_back(face_set);
+  return int(couplings_.size()) - 1;
+}
+
+LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
   const fem::Mesh& mesh = link_.model->mesh;
   const mech::BodyFrame& state = frame.bodies.at(size_t(body_index_));
   const double theta = state.q.z();
@@ -175,8 +190,16 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
   const Eigen::Vector3d origin_world = lift(state.q.head<2>());
   const Eigen::Vector3d a_origin_world = lift(state.q_ddot.head<2>());
 
-  LinkLoadResult out;
-  out.forces = motion_loads_.forces(R_T * gravity_world_, R_T * a_origin_world, omega, alpha);
+  LoadState out;
+  out.body_force = fem::RigidBodyMotionLoads::coefficients(R_T * gravity_world_, R_T * a_origin_world, omega, alpha);
+  out.coupling.assign(couplings_.size(), Vector6d::Zero());
+  // A resultant (force, moment about `point`) entering through coupling j,
+  // kept as force and moment about the coupling's centroid.
+  auto through = [&](int j, const Eigen::Vector3d& force, const Eigen::Vector3d& moment, const Eigen::Vector3d& point) {
+    Vector6d& r = out.coupling[size_t(j)];
+    r.head<3>() += force;
+    r.tail<3>() += moment + (point - couplings_[size_t(j)]->centroid()).cross(force);
+  };
   double magnitude = motion_loads_.mass_kg() *
                      (gravity_world_.norm() + a_origin_world.norm() +
                       length_scale_ * (alpha.norm() + omega.squaredNorm()));
@@ -188,11 +211,12 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
     const Eigen::Vector3d point = R_T * (lift(r.point_world) - origin_world);
     const Eigen::Vector3d moment(0, 0, r.moment_Nm);
     if (a.distribution == BoreLoad::BearingPressure) {
+      if (out.bearing_forces.size() == 0) out.bearing_forces = Eigen::VectorXd::Zero(3 * mesh.node_count());
       fem::BoreGeometry bore = a.bore;
       bore.axis_point_m = point;
-      fem::add_bearing_pressure(mesh, bore, force, out.forces);
+      fem::add_bearing_pressure(mesh, bore, force, out.bearing_forces);
     } else {
-      a.coupling->add(force, moment, point, out.forces);
+      through(a.coupling, force, moment, point);
     }
     magnitude += force.norm() + std::abs(r.moment_Nm) / length_scale_;
   }
@@ -201,13 +225,13 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
     const Eigen::Vector3d a_world =
         a_origin_world + alpha.cross(r_world) + omega.cross(omega.cross(r_world));
     const Eigen::Vector3d force = R_T * (m.mass_kg * (gravity_world_ - a_world));
-    m.coupling->add(force, Eigen::Vector3d::Zero(), m.position_body, out.forces);
+    through(m.coupling, force, Eigen::Vector3d::Zero(), m.position_body);
     magnitude += force.norm();
   }
   for (const auto& d : drives_) {
     const double effort = frame.drives.at(size_t(d.drive_index)).effort;
     const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
-    d.coupling->add(Eigen::Vector3d::Zero(), moment, d.coupling->centroid(), out.forces);
+    through(d.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(d.coupling)]->centroid());
     magnitude += std::abs(effort) / length_scale_;
   }
 
@@ -231,14 +255,33 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
     const double tension = model_spring.stiffness_N_per_m * (length - model_spring.free_length_m) +
                            model_spring.damping_Ns_per_m * e.dot(vj - vi);
     const Eigen::Vector3d force = R_T * lift(sp.on_i ? Eigen::Vector2d(tension * e) : Eigen::Vector2d(-tension * e));
-    sp.coupling->add(force, Eigen::Vector3d::Zero(), sp.point_body, out.forces);
+    through(sp.coupling, force, Eigen::Vector3d::Zero(), sp.point_body);
     magnitude += force.norm();
   }
   for (const auto& pf : point_forces_) {
     const Eigen::Vector3d force = R_T * pf.force_world;
-    pf.coupling->add(force, Eigen::Vector3d::Zero(), pf.point_body, out.forces);
+    through(pf.coupling, force, Eigen::Vector3d::Zero(), pf.point_body);
     magnitude += force.norm();
   }
+
+  // Resultant (force; moment about the origin) of everything so far: the
+  // couplings' nodal forces are statically equivalent to their resultants
+  // exactly, so it is taken from the resultants, not from nodal forces.
+  auto total_resultant = [&] {
+    Vector6d total = body_force_resultants_ * out.body_force;
+    for (size_t j = 0; j < couplings_.size(); ++j) {
+      const Vector6d& r = out.coupling[j];
+      total.head<3>() += r.head<3>();
+      total.tail<3>() += r.tail<3>() + couplings_[j]->centroid().cross(r.head<3>());
+    }
+    if (out.bearing_forces.size() > 0) {
+      Eigen::Vector3d F, M;
+      fem::resultant(mesh, out.bearing_forces, Eigen::Vector3d::Zero(), F, M);
+      total.head<3>() += F;
+      total.tail<3>() += M;
+    }
+    return total;
+  };
 
   // Out of the plane: the planar multibody model gives no force along the
   // pins and no moment about the in-plane axes, but a part whose loads do not
@@ -248,34 +291,85 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
   // split equally (one statically admissible choice; the planar components
   // are untouched and checked below).
   {
-    Eigen::Vector3d F_all, M_centre;
-    std::vector<const fem::DistributingCoupling*> pins;
+    std::vector<int> pins;
     for (const auto& a : joints_)
-      if (a.revolute) pins.push_back(a.coupling.get());
+      if (a.revolute) pins.push_back(a.coupling);
     if (pins.empty())
-      for (const auto& a : joints_) pins.push_back(a.coupling.get());
+      for (const auto& a : joints_) pins.push_back(a.coupling);
     if (!pins.empty()) {
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (const auto* p : pins) centre += p->centroid();
+      for (const int p : pins) centre += couplings_[size_t(p)]->centroid();
       centre /= double(pins.size());
-      fem::resultant(mesh, out.forces, centre, F_all, M_centre);
-      const Eigen::Vector3d force(0.0, 0.0, -F_all.z() / double(pins.size()));
-      const Eigen::Vector3d moment(-M_centre.x() / double(pins.size()), -M_centre.y() / double(pins.size()), 0.0);
-      for (const auto* p : pins) p->add(force, moment, p->centroid(), out.forces);
+      const Vector6d total = total_resultant();
+      const Eigen::Vector3d F_all = total.head<3>();
+      const Eigen::Vector3d M_centre = total.tail<3>() - centre.cross(F_all);
+      const double n = double(pins.size());
+      const Eigen::Vector3d force(0.0, 0.0, -F_all.z() / n);
+      const Eigen::Vector3d moment(-M_centre.x() / n, -M_centre.y() / n, 0.0);
+      for (const int p : pins) through(p, force, moment, couplings_[size_t(p)]->centroid());
       out.out_of_plane_moment_nm = M_centre.head<2>().norm();
       out.out_of_plane_force_n = std::abs(F_all.z());
     }
   }
 
-  Eigen::Vector3d F, M;
-  fem::resultant(mesh, out.forces, Eigen::Vector3d::Zero(), F, M);
+  const Vector6d total = total_resultant();
   out.equilibrium_residual =
-      magnitude > 0 ? std::max(F.norm(), M.norm() / length_scale_) / magnitude : 0.0;
+      magnitude > 0 ? std::max(total.head<3>().norm(), total.tail<3>().norm() / length_scale_) / magnitude : 0.0;
   if (!(out.equilibrium_residual <= tolerance_))
     fail("link '{}' at t = {:.6g} s: the transferred loads are out of equilibrium by {:.2e} of "
          "their magnitude (resultant {:.4g} N, {:.4g} N m; tolerance {:.0e}): the multibody body "
          "and the FE model disagree in mass properties, or a load is missing",
-         link_.body, frame.t, out.equilibrium_residual, F.norm(), M.norm(), tolerance_);
+         link_.body, frame.t, out.equilibrium_residual, total.head<3>().norm(), total.tail<3>().norm(), tolerance_);
+  return out;
+}
+
+LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
+  const LoadState state = state_at(frame);
+  LinkLoadResult out;
+  out.forces = motion_loads_.basis() * state.body_force;
+  for (size_t j = 0; j < couplings_.size(); ++j)
+    couplings_[j]->add(state.coupling[j].head<3>(), state.coupling[j].tail<3>(), couplings_[j]->centroid(),
+                       out.forces);
+  if (state.bearing_forces.size() > 0) out.forces += state.bearing_forces;
+  out.equilibrium_residual = state.equilibrium_residual;
+  out.out_of_plane_moment_nm = state.out_of_plane_moment_nm;
+  out.out_of_plane_force_n = state.out_of_plane_force_n;
+  return out;
+}
+
+std::vector<std::string> LinkLoads::pattern_names() const {
+  std::vector<std::string> names = {"body_force.c_x", "body_force.c_y", "body_force.c_z"};
+  for (const char* row : {"x", "y", "z"})
+    for (const char* col : {"x", "y", "z"}) names.push_back(fmt::format("body_force.A_{}{}", row, col));
+  for (const auto& face : coupling_face_sets_)
+    for (const char* c : {"F_x", "F_y", "F_z", "M_x", "M_y", "M_z"}) names.push_back(fmt::format("{}.{}", face, c));
+  return names;
+}
+
+Eigen::MatrixXd LinkLoads::pattern_forces() const {
+  const Eigen::MatrixXd& basis = motion_loads_.basis();
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(basis.rows(), pattern_count());
+  P.leftCols(12) = basis;
+  for (size_t j = 0; j < couplings_.size(); ++j)
+    for (int k = 0; k < 6; ++k) {
+      Vector6d unit = Vector6d::Zero();
+      unit[k] = 1.0;
+      couplings_[j]->add(unit.head<3>(), unit.tail<3>(), couplings_[j]->centroid(), P.col(12 + 6 * Eigen::Index(j) + k));
+    }
+  return P;
+}
+
+LinkLoadCoefficients LinkLoads::coefficients_at(const mech::Frame& frame) const {
+  require(superposable(), "link '{}': a bearing pressure is not a combination of fixed load patterns (it turns with "
+          "the force); solve it step by step", link_.body);
+  const LoadState state = state_at(frame);
+  LinkLoadCoefficients out;
+  out.coefficients.resize(pattern_count());
+  out.coefficients.head<12>() = state.body_force;
+  for (size_t j = 0; j < couplings_.size(); ++j) out.coefficients.segment<6>(12 + 6 * Eigen::Index(j)) = state.coupling[j];
+  out.equilibrium_residual = state.equilibrium_residual;
+  out.out_of_plane_moment_nm = state.out_of_plane_moment_nm;
+  out.out_of_plane_force_n = state.out_of_plane_force_n;
   return out;
 }
 

@@ -19,25 +19,60 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& model, const LinkLoads
   return analyse_link_over_motion(analysis, loads, frames, log, options, on_step);
 }
 
-LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads,
-                                      const std::vector<mech::Frame>& frames, const Log& log,
-                                      const LinkStressOptions& options, const StepCallback& on_step) {
-  require(!frames.empty(), "link '{}': no output times to analyse", loads.body());
-  const fem::FeModel& model = analysis.model();
-  const fem::Index nodes = model.mesh.node_count();
+namespace {
+
+bool wants_callback(const LinkStressOptions& options, std::size_t step) {
+  return options.callback_steps.empty() || (step < options.callback_steps.size() && options.callback_steps[step]);
+}
+
+// Relative size of the 3-2-1 support's reactions: relative to the total
+// load the link carries (sum of the nodal force magnitudes), since the
+// reactions come out of K u - f and carry the solve's round-off amplified by
+// the condition of K.
+double relative_support_reaction(const Eigen::VectorXd& reaction, const double* forces, fem::Index nodes) {
+  const double load_scale =
+      std::max(Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(forces, 3, nodes).colwise().norm().sum(),
+               1e-300);
+  return reaction.norm() / load_scale;
+}
+
+void check_support_reaction(LinkEnvelope& env, double relative, const LinkLoads& loads, const mech::Frame& frame,
+                            const LinkStressOptions& options) {
+  env.worst_support_reaction = std::max(env.worst_support_reaction, relative);
+  if (!(relative <= options.reaction_tolerance))
+    fail("link '{}' at t = {:.6g} s: the 3-2-1 support carries {:.2e} of the link's total "
+         "load; the loads are not self-equilibrated",
+         loads.body(), frame.t, relative);
+}
+
+// One step's von Mises stress and deformation magnitude into the envelope.
+void fold_into_envelope(LinkEnvelope& env, std::size_t step, const Eigen::Ref<const Eigen::VectorXd>& von_mises,
+                        const Eigen::Ref<const Eigen::VectorXd>& magnitude) {
+  for (Eigen::Index i = 0; i < von_mises.size(); ++i) {
+    if (von_mises[i] > env.max_von_mises_pa[i]) {
+      env.max_von_mises_pa[i] = von_mises[i];
+      env.max_von_mises_step[i] = int(step);
+    }
+    if (magnitude[i] > env.max_displacement_m[i]) {
+      env.max_displacement_m[i] = magnitude[i];
+      env.max_displacement_step[i] = int(step);
+    }
+  }
+}
+
+std::vector<fem::Index> supported_nodes(const fem::FeModel& model) {
   std::vector<fem::Index> supported;
   for (const auto& s : model.supports) supported.insert(supported.end(), s.nodes.begin(), s.nodes.end());
+  return supported;
+}
 
-  LinkEnvelope env;
-  env.max_von_mises_pa = Eigen::VectorXd::Constant(nodes, -1.0);
-  env.max_von_mises_step = Eigen::VectorXi::Zero(nodes);
-  env.max_displacement_m = Eigen::VectorXd::Constant(nodes, -1.0);
-  env.max_displacement_step = Eigen::VectorXi::Zero(nodes);
-
+void step_by_step(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, const std::vector<mech::Frame>& frames,
+                  const LinkStressOptions& options, const StepCallback& on_step, Progress& progress,
+                  LinkEnvelope& env) {
+  const fem::FeModel& model = analysis.model();
+  const fem::Index nodes = model.mesh.node_count();
+  const std::vector<fem::Index> supported = supported_nodes(model);
   Stopwatch clock;
-  env.assembly_seconds = analysis.timings().assembly_seconds;
-
-  Progress progress(log, fmt::format("link '{}' time steps", loads.body()), long(frames.size()));
   const std::size_t block = std::size_t(std::max(1, options.block_size));
   for (std::size_t first = 0; first < frames.size(); first += block) {
     const std::size_t count = std::min(block, frames.size() - first);
@@ -51,50 +86,144 @@ LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const
     clock.restart();
     const auto displacements = analysis.solve_forces(F);
     env.solve_seconds += clock.seconds();
+    env.solved_right_hand_sides += long(count);
     for (std::size_t k = 0; k < count; ++k) {
       const std::size_t step = first + k;
       const fem::DisplacementField& u = displacements[k];
       const Eigen::VectorXd f = F.col(Eigen::Index(k));
       // Reactions of the determinate support: (K u - f) at its six DoFs.
       const Eigen::VectorXd reaction = analysis.reactions_at(u, f, supported);
-      // Relative to the total load the link carries (sum of the nodal force
-      // magnitudes): the reactions come out of K u - f, so they carry the
-      // solve's round-off amplified by the condition of K.
-      const double load_scale =
-          std::max(Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(f.data(), 3, nodes)
-                       .colwise()
-                       .norm()
-                       .sum(),
-                   1e-300);
-      const double relative = reaction.norm() / load_scale;
-      env.worst_support_reaction = std::max(env.worst_support_reaction, relative);
-      if (!(relative <= options.reaction_tolerance))
-        fail("link '{}' at t = {:.6g} s: the 3-2-1 support carries {:.2e} of the link's total "
-             "load; the loads are not self-equilibrated",
-             loads.body(), frames[step].t, relative);
+      check_support_reaction(env, relative_support_reaction(reaction, f.data(), nodes), loads, frames[step], options);
       clock.restart();
       const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
       // Deformation measure: the elastic displacement without the rigid-body
       // part the 3-2-1 support's arbitrary nodes put into it (computed once:
       // the callback gets the same field).
       const fem::DisplacementField elastic = fem::remove_rigid_body_motion(model.mesh, u);
-      const Eigen::VectorXd magnitude = fem::displacement_magnitude(elastic);
-      const bool in_envelope = options.envelope_steps == 0 || step < options.envelope_steps;
-      for (fem::Index i = 0; in_envelope && i < nodes; ++i) {
-        if (stress.von_mises_pa[i] > env.max_von_mises_pa[i]) {
-          env.max_von_mises_pa[i] = stress.von_mises_pa[i];
-          env.max_von_mises_step[i] = int(step);
-        }
-        if (magnitude[i] > env.max_displacement_m[i]) {
-          env.max_displacement_m[i] = magnitude[i];
-          env.max_displacement_step[i] = int(step);
-        }
-      }
+      if (options.envelope_steps == 0 || step < options.envelope_steps)
+        fold_into_envelope(env, step, stress.von_mises_pa, fem::displacement_magnitude(elastic));
       env.recovery_seconds += clock.seconds();
-      if (on_step) on_step(step, elastic, stress);
+      if (on_step && wants_callback(options, step)) on_step(step, elastic, stress);
       progress.advance(long(step + 1));
     }
   }
+}
+
+void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, const std::vector<mech::Frame>& frames,
+                const LinkStressOptions& options, const StepCallback& on_step, Progress& progress, const Log& log,
+                LinkEnvelope& env) {
+  const fem::FeModel& model = analysis.model();
+  const fem::Index nodes = model.mesh.node_count();
+  const std::vector<fem::Index> supported = supported_nodes(model);
+  const Eigen::Index steps = Eigen::Index(frames.size());
+
+  // 1. The coefficients of every frame (and the loads' equilibrium checks).
+  const std::vector<std::string> all_names = loads.pattern_names();
+  Eigen::MatrixXd all_coefficients(loads.pattern_count(), steps);
+  for (Eigen::Index t = 0; t < steps; ++t) {
+    const LinkLoadCoefficients c = loads.coefficients_at(frames[size_t(t)]);
+    env.worst_equilibrium_residual = std::max(env.worst_equilibrium_residual, c.equilibrium_residual);
+    env.max_out_of_plane_moment_nm = std::max(env.max_out_of_plane_moment_nm, c.out_of_plane_moment_nm);
+    all_coefficients.col(t) = c.coefficients;
+  }
+  // 2. Patterns with a coefficient at some time (a zero row adds exactly 0).
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < all_coefficients.rows(); ++k)
+    if ((all_coefficients.row(k).array() != 0.0).any()) kept.push_back(k);
+  const Eigen::Index m = Eigen::Index(kept.size());
+  LinkLoadPatterns patterns;
+  patterns.coefficients.resize(m, steps);
+  Eigen::MatrixXd P(3 * nodes, m);
+  {
+    const Eigen::MatrixXd all_patterns = loads.pattern_forces();
+    for (Eigen::Index k = 0; k < m; ++k) {
+      patterns.names.push_back(all_names[size_t(kept[size_t(k)])]);
+      patterns.coefficients.row(k) = all_coefficients.row(kept[size_t(k)]);
+      P.col(k) = all_patterns.col(kept[size_t(k)]);
+    }
+  }
+  log.info("  link '{}': unit-load superposition: {} load patterns for {} output times", loads.body(), m, steps);
+
+  // 3. One block solve and one stress recovery per pattern.
+  Stopwatch clock;
+  const std::vector<fem::DisplacementField> unit = analysis.solve_forces(P);
+  env.solve_seconds += clock.seconds();
+  env.solved_right_hand_sides = long(m);
+  clock.restart();
+  Eigen::MatrixXd reaction_patterns(3 * Eigen::Index(supported.size()), m);
+  patterns.elastic_displacement_m.resize(3 * nodes, m);
+  patterns.stress_pa.resize(6 * nodes, m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const fem::DisplacementField& u = unit[size_t(k)];
+    reaction_patterns.col(k) = analysis.reactions_at(u, P.col(k), supported);
+    const fem::DisplacementField elastic = fem::remove_rigid_body_motion(model.mesh, u);
+    patterns.elastic_displacement_m.col(k) = Eigen::Map<const Eigen::VectorXd>(elastic.data(), 3 * nodes);
+    const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
+    patterns.stress_pa.col(k) = Eigen::Map<const Eigen::VectorXd>(stress.stress_pa.data(), 6 * nodes);
+  }
+
+  // 4. Every frame as a combination, in blocks of frames (the block's
+  // stress fields take at most about 256 MB).
+  const Eigen::Index block =
+      std::clamp<Eigen::Index>(Eigen::Index(256e6 / (8.0 * 6.0 * double(std::max<fem::Index>(nodes, 1)))), 1, 512);
+  Eigen::VectorXd von_mises(nodes), magnitude(nodes);
+  for (Eigen::Index first = 0; first < steps; first += block) {
+    const Eigen::Index count = std::min(block, steps - first);
+    const auto C = patterns.coefficients.middleCols(first, count);
+    const Eigen::MatrixXd stress = patterns.stress_pa * C;
+    const Eigen::MatrixXd elastic = patterns.elastic_displacement_m * C;
+    const Eigen::MatrixXd forces = P * C;
+    const Eigen::MatrixXd reactions = reaction_patterns * C;
+    for (Eigen::Index k = 0; k < count; ++k) {
+      const std::size_t step = std::size_t(first + k);
+      check_support_reaction(env, relative_support_reaction(reactions.col(k), forces.col(k).data(), nodes), loads,
+                             frames[step], options);
+      const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> s(stress.col(k).data(), 6, nodes);
+      const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> e(elastic.col(k).data(), 3, nodes);
+#pragma omp parallel for schedule(static)
+      for (fem::Index i = 0; i < nodes; ++i) {
+        von_mises[i] = fem::von_mises(s.col(i));
+        magnitude[i] = e.col(i).norm();
+      }
+      if (options.envelope_steps == 0 || step < options.envelope_steps) fold_into_envelope(env, step, von_mises, magnitude);
+      if (on_step && wants_callback(options, step)) {
+        const fem::DisplacementField u = e.transpose();
+        fem::NodalStress nodal;
+        nodal.stress_pa = s.transpose();
+        nodal.von_mises_pa = von_mises;
+        on_step(step, u, nodal);
+      }
+      progress.advance(long(step + 1));
+    }
+  }
+  env.recovery_seconds += clock.seconds();
+  env.patterns = std::move(patterns);
+}
+
+}  // namespace
+
+LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads,
+                                      const std::vector<mech::Frame>& frames, const Log& log,
+                                      const LinkStressOptions& options, const StepCallback& on_step) {
+  require(!frames.empty(), "link '{}': no output times to analyse", loads.body());
+  require(options.load_path != LoadPath::Superposition || loads.superposable(),
+          "link '{}': unit-load superposition was asked for, but a joint's cosine bearing pressure is not a "
+          "combination of fixed load patterns; use the step-by-step path", loads.body());
+  const fem::Index nodes = analysis.model().mesh.node_count();
+  LinkEnvelope env;
+  env.max_von_mises_pa = Eigen::VectorXd::Constant(nodes, -1.0);
+  env.max_von_mises_step = Eigen::VectorXi::Zero(nodes);
+  env.max_displacement_m = Eigen::VectorXd::Constant(nodes, -1.0);
+  env.max_displacement_step = Eigen::VectorXi::Zero(nodes);
+  env.assembly_seconds = analysis.timings().assembly_seconds;
+
+  Progress progress(log, fmt::format("link '{}' time steps", loads.body()), long(frames.size()));
+  const bool superpose = options.load_path == LoadPath::Superposition ||
+                         (options.load_path == LoadPath::Auto && loads.superposable());
+  if (superpose)
+    superposed(analysis, loads, frames, options, on_step, progress, log, env);
+  else
+    step_by_step(analysis, loads, frames, options, on_step, progress, env);
   progress.finish();
   env.peak_von_mises_pa = env.max_von_mises_pa.maxCoeff(&env.peak_von_mises_node);
   env.peak_von_mises_step = env.max_von_mises_step[env.peak_von_mises_node];

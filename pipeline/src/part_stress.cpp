@@ -16,6 +16,19 @@ fem::FeModel with_three_two_one_support(const fem::FeModel& model) {
   return supported;
 }
 
+// The superposition's patterns into the body (motion times only: the static
+// study, solved in the same block, is written as static fields).
+void write_load_patterns(post::BodyWriter& body, loads::LinkLoadPatterns& patterns,
+                         const std::vector<mech::Frame>& motion) {
+  post::LoadPatternData data;
+  data.names = patterns.names;
+  for (const auto& frame : motion) data.time_s.push_back(frame.t);
+  data.coefficients = patterns.coefficients.leftCols(Eigen::Index(motion.size()));
+  data.elastic_displacement_m = std::move(patterns.elastic_displacement_m);
+  data.stress_pa = std::move(patterns.stress_pa);
+  body.write_load_patterns(data);
+}
+
 }  // namespace
 
 SupportedPart::SupportedPart(const Part& part, const fem::StaticSolverOptions& solver, const Log& log)
@@ -49,6 +62,12 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   }
   loads::LinkStressOptions stress_options = options;
   stress_options.envelope_steps = motion.size();
+  // Fields are written at the output times asked for (all by default) and
+  // always for the static study; the envelope covers every output time.
+  require(options.callback_steps.empty() || options.callback_steps.size() == motion.size(),
+          "{}: the field output mask has {} entries for {} output times", part.spec.label,
+          options.callback_steps.size(), motion.size());
+  if (!stress_options.callback_steps.empty() && static_pose) stress_options.callback_steps.push_back(true);
 
   post::BodyWriter& body = writer.add_body(part.body(), supported.mesh);
   body.begin_series({{"displacement", "m", 3, post::kVectorComponents}, {"von_mises", "Pa", 1, {}}});
@@ -68,12 +87,16 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     ps.static_von_mises_pa = s.von_mises_pa.maxCoeff();
     ps.static_displacement_m = fem::displacement_magnitude(u).maxCoeff();
   };
-  const loads::LinkEnvelope env =
+  loads::LinkEnvelope env =
       loads::analyse_link_over_motion(factorized->analysis(), link_loads, frames, log, stress_options, on_step);
   const post::IndexMatrix vm_step = env.max_von_mises_step.cast<fem::Index>();
   const post::IndexMatrix u_step = env.max_displacement_step.cast<fem::Index>();
-  body.write_envelope("von_mises", "Pa", env.max_von_mises_pa, vm_step, "max");
-  body.write_envelope("displacement_magnitude", "m", env.max_displacement_m, u_step, "max");
+  // Fields at some output times only: the envelope's steps index all of them.
+  std::vector<double> step_times;
+  if (!options.callback_steps.empty())
+    for (const auto& frame : motion) step_times.push_back(frame.t);
+  body.write_envelope("von_mises", "Pa", env.max_von_mises_pa, vm_step, "max", step_times);
+  body.write_envelope("displacement_magnitude", "m", env.max_displacement_m, u_step, "max", step_times);
 
   ps.peak_von_mises_pa = env.peak_von_mises_pa;
   ps.peak_von_mises_time_s = motion[size_t(env.peak_von_mises_step)].t;
@@ -89,13 +112,18 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.factor_nonzeros = env.solver.factor_nonzeros;
   ps.factor_bytes = env.solver.factor_bytes;
   ps.factorization_flops = env.solver.factorization_flops;
-  ps.right_hand_sides = long(frames.size());
+  ps.right_hand_sides = env.solved_right_hand_sides;
+  ps.output_times = long(motion.size());
+  ps.superposed = env.patterns.has_value();
+  if (env.patterns) write_load_patterns(body, *env.patterns, motion);
   ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
   ps.worst_support_reaction = env.worst_support_reaction;
   ps.max_out_of_plane_moment_nm = env.max_out_of_plane_moment_nm;
   ps.iterative_solver = env.iterative_solver;
   ps.solver_summary = env.solver_summary;
   const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
+  log.info("  {}: {} right-hand sides for {} output times{}", ps.body, ps.right_hand_sides, frames.size(),
+           ps.superposed ? " (unit-load superposition)" : " (step by step)");
   log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
            "loads in equilibrium to {:.1e}, support reactions {:.1e}; out-of-plane moment on the pins up to {:.3g} N m",
            ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0], at[1],

@@ -107,7 +107,7 @@ void write_body_fields_csv(const std::filesystem::path& path, const ResultsFile&
   }
   const std::vector<double> times = results.series_times(body);
   auto add_envelope = [&](const std::string& name, const std::string& units, const FieldMatrix& value,
-                          const IndexMatrix& step) {
+                          const IndexMatrix& step, const std::vector<double>& times) {
     const DisplayUnit u = display_unit(units);
     Column v{component_headers(name + "_max", u.label, {}, long(value.cols())), value * u.factor};
     Column t{component_headers(name + "_max_time", "s", {}, long(step.cols())), FieldMatrix(step.rows(), step.cols())};
@@ -122,7 +122,7 @@ void write_body_fields_csv(const std::filesystem::path& path, const ResultsFile&
   const auto stored = results.envelopes(body);
   for (const auto& name : stored) {
     const EnvelopeData e = results.read_envelope(body, name);
-    add_envelope(e.operation == "max" ? name : name + "_" + e.operation, e.units, e.values, e.step);
+    add_envelope(e.operation == "max" ? name : name + "_" + e.operation, e.units, e.values, e.step, e.times_s);
   }
   for (const auto& name : results.series_fields(body)) {
     if (std::find(stored.begin(), stored.end(), name) != stored.end()) continue;
@@ -130,7 +130,7 @@ void write_body_fields_csv(const std::filesystem::path& path, const ResultsFile&
     const BodyEnvelope e = envelope_from_series(results, body, name);
     IndexMatrix step(n, 1);
     for (fem::Index i = 0; i < n; ++i) step(i, 0) = e.max_step[size_t(i)];
-    add_envelope(name, e.units, e.max_value, step);
+    add_envelope(name, e.units, e.max_value, step, times);
   }
   for (const Column& c : columns)
     require(c.values.rows() == n, "body '{}': field '{}' has {} rows for {} nodes", body,

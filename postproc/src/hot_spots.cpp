@@ -94,7 +94,7 @@ BodyEnvelope max_envelope(const ResultsFile& results, const std::string& body,
       env.units = data.units;
       env.source = BodyEnvelope::Source::FileEnvelope;
       env.nodes_m = results.read_mesh(body).nodes;
-      env.times_s = results.series_times(body);
+      env.times_s = data.times_s;
       require(data.values.rows() == env.nodes_m.rows(),
               "body '{}' envelope '{}' has {} rows for {} nodes", body, field, data.values.rows(),
               env.nodes_m.rows());

@@ -238,6 +238,40 @@ std::vector<double> ResultsFile::series_times(const std::string& body) const {
   return h5::read_doubles(f.io, d.get(), p);
 }
 
+bool ResultsFile::has_load_patterns(const std::string& body) const {
+  return impl_->exists(join(impl_->body_path(body), layout::kLoadPatterns));
+}
+
+LoadPatternData ResultsFile::read_load_patterns(const std::string& body) const {
+  const Impl& f = *impl_;
+  const std::string group_path = join(f.body_path(body), layout::kLoadPatterns);
+  require(f.exists(group_path), "{}: body '{}' has no load patterns (a step-by-step run)", f.path.string(), body);
+  h5::Handle group = h5::open_group(f.io, f.file.get(), group_path, group_path);
+  LoadPatternData out;
+  out.names = h5::read_strings_attribute(f.io, group.get(), group_path, layout::kPatternNames);
+  const Eigen::Index m = Eigen::Index(out.names.size());
+  auto read = [&](const char* name) {
+    const std::string p = join(group_path, name);
+    h5::Handle d = h5::open_dataset(f.io, f.file.get(), p, p);
+    return std::pair{h5::read_doubles(f.io, d.get(), p), h5::dataset_dims(f.io, d.get(), p)};
+  };
+  out.time_s = read(layout::kTime).first;
+  const Eigen::Index T = Eigen::Index(out.time_s.size());
+  const auto [c, c_dims] = read(layout::kPatternCoefficients);
+  require(c_dims.size() == 2 && Eigen::Index(c_dims[0]) == T && Eigen::Index(c_dims[1]) == m,
+          "{}: {}/{} is not a (T, m) = ({}, {}) array", f.path.string(), group_path, layout::kPatternCoefficients, T, m);
+  out.coefficients = Eigen::Map<const Eigen::MatrixXd>(c.data(), m, T);
+  const auto [u, u_dims] = read(layout::kPatternDisplacement);
+  const auto [s, s_dims] = read(layout::kPatternStress);
+  require(u_dims.size() == 3 && Eigen::Index(u_dims[0]) == m && u_dims[2] == 3 && s_dims.size() == 3 &&
+              Eigen::Index(s_dims[0]) == m && s_dims[1] == u_dims[1] && s_dims[2] == 6,
+          "{}: {}: pattern fields are not (m, N, 3) and (m, N, 6) arrays", f.path.string(), group_path);
+  const Eigen::Index nodes = Eigen::Index(u_dims[1]);
+  out.elastic_displacement_m = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3 * nodes, m);
+  out.stress_pa = Eigen::Map<const Eigen::MatrixXd>(s.data(), 6 * nodes, m);
+  return out;
+}
+
 FieldData ResultsFile::read_step(const std::string& body, const std::string& field,
                                  fem::Index step) const {
   const Impl& f = *impl_;
@@ -294,6 +328,13 @@ EnvelopeData ResultsFile::read_envelope(const std::string& body, const std::stri
   std::copy(steps.begin(), steps.end(), out.step.data());
   h5::Handle g = h5::open_group(f.io, f.file.get(), group, group);
   out.operation = h5::read_string_attribute(f.io, g.get(), group, "operation");
+  const std::string own_time = join(group, layout::kTime);
+  if (f.exists(own_time)) {
+    h5::Handle d = h5::open_dataset(f.io, f.file.get(), own_time, own_time);
+    out.times_s = h5::read_doubles(f.io, d.get(), own_time);
+  } else {
+    out.times_s = series_times(body);
+  }
   return out;
 }
 

@@ -112,6 +112,7 @@ struct BodyWriter::State {
   std::vector<h5::Handle> datasets;  // one per series field
   std::vector<double> times_s;
   std::set<std::string> names_static, names_element, names_envelope;
+  bool load_patterns_written = false;
   xdmf::Grid grid;
   std::string path;  // "/bodies/<name>"
 };
@@ -431,7 +432,7 @@ fem::Index BodyWriter::steps_written() const { return fem::Index(state_->times_s
 void BodyWriter::write_envelope(const std::string& name, const std::string& units,
                                 const Eigen::Ref<const FieldMatrix>& values,
                                 const Eigen::Ref<const IndexMatrix>& step,
-                                const std::string& operation) {
+                                const std::string& operation, const std::vector<double>& step_times_s) {
   check_open();
   require_valid_name(name, "envelope");
   require_valid_name(operation, "envelope operation");
@@ -451,8 +452,14 @@ void BodyWriter::write_envelope(const std::string& name, const std::string& unit
     const std::string path = join(group_path, name);
     h5::Handle group = h5::make_group(io, s.envelopes.get(), name, path);
     h5::write_attribute(io, group.get(), path, "operation", operation);
-    h5::write_attribute(io, group.get(), path, "step_refers_to",
-                        fmt::format("{}/{}/{}", s.path, layout::kSeries, layout::kTime));
+    if (step_times_s.empty()) {
+      h5::write_attribute(io, group.get(), path, "step_refers_to",
+                          fmt::format("{}/{}/{}", s.path, layout::kSeries, layout::kTime));
+    } else {
+      const hsize_t time_dims[1] = {hsize_t(step_times_s.size())};
+      h5::write_dataset(io, group.get(), layout::kTime, join(path, layout::kTime), time_dims, step_times_s.data(), "s");
+      h5::write_attribute(io, group.get(), path, "step_refers_to", join(path, layout::kTime));
+    }
     const hsize_t dims[2] = {hsize_t(values.rows()), hsize_t(values.cols())};
     FieldMatrix storage;
     const IndexMatrix step_copy = step;
@@ -469,6 +476,38 @@ void BodyWriter::write_envelope(const std::string& name, const std::string& unit
         {fmt::format("{}_{}_step", name, operation), step_path, node_count_, c, false, true});
   });
   s.names_envelope.insert(name);
+}
+
+void BodyWriter::write_load_patterns(const LoadPatternData& p) {
+  check_open();
+  State& s = *state_;
+  const Eigen::Index m = Eigen::Index(p.names.size()), T = Eigen::Index(p.time_s.size());
+  require(p.coefficients.rows() == m && p.coefficients.cols() == T,
+          "load patterns of body '{}': coefficients are {} x {}, expected {} patterns x {} times", name_,
+          p.coefficients.rows(), p.coefficients.cols(), m, T);
+  require(p.elastic_displacement_m.rows() == 3 * node_count_ && p.elastic_displacement_m.cols() == m &&
+              p.stress_pa.rows() == 6 * node_count_ && p.stress_pa.cols() == m,
+          "load patterns of body '{}': pattern fields do not fit its {} nodes and {} patterns", name_, node_count_, m);
+  require(!s.load_patterns_written, "body '{}' already has load patterns", name_);
+  file_.guarded([&] {
+    const h5::H5Io& io = file_.io;
+    const std::string path = join(s.path, layout::kLoadPatterns);
+    h5::Handle group = h5::make_group(io, s.group.get(), layout::kLoadPatterns, path);
+    h5::write_attribute(io, group.get(), path, layout::kPatternNames, p.names);
+    const hsize_t time_dims[1] = {hsize_t(T)};
+    h5::write_dataset(io, group.get(), layout::kTime, join(path, layout::kTime), time_dims, p.time_s.data(), "s");
+    // Column-major m x T is C-order (T, m); 3 N x m is (m, N, 3).
+    const hsize_t coefficient_dims[2] = {hsize_t(T), hsize_t(m)};
+    h5::write_dataset(io, group.get(), layout::kPatternCoefficients, join(path, layout::kPatternCoefficients),
+                      coefficient_dims, p.coefficients.data(), "per pattern: N, N*m or m/s^2");
+    const hsize_t u_dims[3] = {hsize_t(m), hsize_t(node_count_), 3};
+    h5::write_dataset(io, group.get(), layout::kPatternDisplacement, join(path, layout::kPatternDisplacement), u_dims,
+                      p.elastic_displacement_m.data(), "m per unit coefficient");
+    const hsize_t s_dims[3] = {hsize_t(m), hsize_t(node_count_), 6};
+    h5::write_dataset(io, group.get(), layout::kPatternStress, join(path, layout::kPatternStress), s_dims,
+                      p.stress_pa.data(), "Pa per unit coefficient");
+  });
+  s.load_patterns_written = true;
 }
 
 // ---------------------------------------------------------------------------------------------

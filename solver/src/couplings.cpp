@@ -170,18 +170,25 @@ RigidBodyMotionLoads::RigidBodyMotionLoads(const Mesh& mesh, const IsotropicMate
   if (mass_ > 0) centre_of_mass_ = first_moment / mass_;
 }
 
+Eigen::Matrix<double, 12, 1> RigidBodyMotionLoads::coefficients(const Eigen::Vector3d& gravity,
+                                                                const Eigen::Vector3d& origin_acceleration,
+                                                                const Eigen::Vector3d& omega,
+                                                                const Eigen::Vector3d& alpha) {
+  // b(x) / rho = c + A x with c = g - a_O, A = -(skew(alpha) + skew(omega)^2).
+  const Eigen::Vector3d c = gravity - origin_acceleration;
+  const Eigen::Matrix3d A = -(skew(alpha) + skew(omega) * skew(omega));
+  Eigen::Matrix<double, 12, 1> out;
+  out.head<3>() = c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out[3 + 3 * i + j] = A(i, j);
+  return out;
+}
+
 Eigen::VectorXd RigidBodyMotionLoads::forces(const Eigen::Vector3d& gravity,
                                              const Eigen::Vector3d& origin_acceleration,
                                              const Eigen::Vector3d& omega,
                                              const Eigen::Vector3d& alpha) const {
-  // b(x) / rho = c + A x with c = g - a_O, A = -(skew(alpha) + skew(omega)^2).
-  const Eigen::Vector3d c = gravity - origin_acceleration;
-  const Eigen::Matrix3d A = -(skew(alpha) + skew(omega) * skew(omega));
-  Eigen::Matrix<double, 12, 1> coefficients;
-  coefficients.head<3>() = c;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) coefficients[3 + 3 * i + j] = A(i, j);
-  return basis_ * coefficients;
+  return basis_ * coefficients(gravity, origin_acceleration, omega, alpha);
 }
 
 void resultant(const Mesh& mesh, const Eigen::VectorXd& forces, const Eigen::Vector3d& point,

@@ -107,10 +107,11 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
       const PartField& field = pose.part(parts[p].body());
       const post::FieldMatrix X = world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])]);
       const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
-      bodies[p]->write_step(frame.t, {{"position", X},
-                                      {"displacement", field.displacement_m},
-                                      {"displacement_magnitude", magnitude},
-                                      {"von_mises", field.von_mises_pa}});
+      if (options.field_steps.empty() || options.field_steps.at(k))
+        bodies[p]->write_step(frame.t, {{"position", X},
+                                        {"displacement", field.displacement_m},
+                                        {"displacement_magnitude", magnitude},
+                                        {"von_mises", field.von_mises_pa}});
       BodyEnvelope& e = envelopes[p];
       for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
         if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
@@ -188,9 +189,13 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
         "{:.2e} of it (tolerance 1e-6)",
         summary.worst_chain_mismatch);
 
+  std::vector<double> step_times;  // fields at some output times only: the envelope's steps index all of them
+  if (!options.field_steps.empty())
+    for (const auto& frame : motion) step_times.push_back(frame.t);
   for (size_t p = 0; p < parts.size(); ++p) {
-    bodies[p]->write_envelope("displacement_magnitude", "m", envelopes[p].max_u, envelopes[p].step_u, "max");
-    bodies[p]->write_envelope("von_mises", "Pa", envelopes[p].max_vm, envelopes[p].step_vm, "max");
+    bodies[p]->write_envelope("displacement_magnitude", "m", envelopes[p].max_u, envelopes[p].step_u, "max",
+                              step_times);
+    bodies[p]->write_envelope("von_mises", "Pa", envelopes[p].max_vm, envelopes[p].step_vm, "max", step_times);
   }
 
   if (static_pose) {

@@ -34,6 +34,11 @@ meshes::MeshOptions read_part_mesh_options(const CaseFile& case_file, const std:
 // solver.block_size: right-hand sides per block solve over the motion.
 std::vector<KeySpec> motion_solver_keys();
 loads::LinkStressOptions read_stress_options(const CaseFile& case_file);
+// The output times that get full fields (output.field_every /
+// output.field_times_s) as a mask over `times` (empty: all). Times asked for
+// that are not output times are merged into `times`. Throws Error naming the
+// key for a time outside the motion.
+std::vector<bool> read_field_output_steps(const CaseFile& case_file, std::vector<double>& times);
 
 // The SPEC §1 dimensions under `prefix` ("mechanism." or "geometry."): a_mm,
 // c_mm, h_mm, r_mm, defaults the published example (mech::LeverChainExample).

@@ -25,6 +25,19 @@
 // off the mid-plane z = 0) the planar model gives no reaction; loads_at hands
 // them to the part's revolute pins, split equally (a pin holds the moments
 // normal to its axis), and reports their size.
+// Load patterns (unit-load superposition). Every load above except the
+// cosine bearing pressure is linear in a fixed set of nodal force patterns:
+//     f(t) = P c(t),   P = [ B | G_1 | ... | G_k ]      (3 N x (12 + 6 k))
+// B: the 12 basis fields of the affine body force (fem::RigidBodyMotionLoads);
+// G_j: unit force F_x, F_y, F_z and unit moment M_x, M_y, M_z at the centroid
+// of the j-th distributing coupling, one per distinct face set (a joint, a
+// mass, a drive, a spring or a force on the same face share it). c(t): the
+// body force's 12 coefficients, then per coupling the resultant (force, N;
+// moment about its centroid, N m) of everything that enters through it. So a
+// link is solved for its m patterns once and any output time is the
+// combination c(t): loads_at(frame) == pattern_forces() * coefficients_at(frame)
+// up to round-off. The bearing pressure turns with the force's direction (not
+// linear): a link with one is not superposable() and goes step by step.
 // These loads are in equilibrium when the multibody body has the FE mesh's
 // mass properties (pipeline::apply_mass_properties); loads_at checks it and throws an
 // Error naming the link and the time when the resultant force or moment
@@ -99,6 +112,14 @@ struct LinkLoadResult {
   double out_of_plane_moment_nm = 0.0, out_of_plane_force_n = 0.0;
 };
 
+// The coefficients c(t) of a frame (see "Load patterns" above) with the
+// same checks as LinkLoadResult.
+struct LinkLoadCoefficients {
+  Eigen::VectorXd coefficients;  // pattern_count(); units of each pattern's unit load
+  double equilibrium_residual = 0.0;
+  double out_of_plane_moment_nm = 0.0, out_of_plane_force_n = 0.0;
+};
+
 class LinkLoads {
  public:
   // `model` is the multibody model the frames come from. Throws Error if the
@@ -112,7 +133,33 @@ class LinkLoads {
 
   const std::string& body() const { return link_.body; }
 
+  // Unit-load superposition (see "Load patterns" above).
+  bool superposable() const { return !has_bearing_pressure_; }
+  int pattern_count() const { return 12 + 6 * int(couplings_.size()); }
+  // "body_force.c_x" .. "body_force.A_zz", then "<face_set>.F_x" .. ".M_z".
+  std::vector<std::string> pattern_names() const;
+  // P, 3 N x pattern_count(), N per unit coefficient.
+  Eigen::MatrixXd pattern_forces() const;
+  // c(t); throws like loads_at (out of equilibrium), also for a link that is
+  // not superposable (the bearing pressure has no coefficient).
+  LinkLoadCoefficients coefficients_at(const mech::Frame& frame) const;
+
  private:
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  // Everything loads_at and coefficients_at share: the loads of a frame as
+  // body-force coefficients, coupling resultants (force, moment about the
+  // coupling's centroid) and, for bearing joints, their nodal forces.
+  struct LoadState {
+    Eigen::Matrix<double, 12, 1> body_force;
+    std::vector<Vector6d> coupling;   // per couplings_ entry
+    Eigen::VectorXd bearing_forces;   // 3 N; empty without bearing joints
+    double equilibrium_residual = 0.0;
+    double out_of_plane_moment_nm = 0.0, out_of_plane_force_n = 0.0;
+  };
+  LoadState state_at(const mech::Frame& frame) const;
+  // Index into couplings_ of the coupling on `face_set` (made on first use).
+  int coupling_on(const std::string& face_set);
+
   struct Attached {
     std::string joint;
     int joint_index = -1;
@@ -120,37 +167,41 @@ class LinkLoads {
     BoreLoad distribution;
     bool revolute = false;  // a pin: carries the out-of-plane moments
     fem::BoreGeometry bore;
-    std::unique_ptr<fem::DistributingCoupling> coupling;
+    int coupling = -1;
   };
   struct Drive {
     std::string name;
     int drive_index = -1;
     bool on_j = true;  // the effort acts on body_j (+), reacts on body_i (-)
-    std::unique_ptr<fem::DistributingCoupling> coupling;
+    int coupling = -1;
   };
   struct Spring {
     std::string name;
     int spring_index = -1;
     bool on_i = false;  // this link carries point_i (else point_j)
     Eigen::Vector3d point_body = Eigen::Vector3d::Zero();
-    std::unique_ptr<fem::DistributingCoupling> coupling;
+    int coupling = -1;
   };
   struct PointForce {
     std::string name;
     Eigen::Vector3d force_world = Eigen::Vector3d::Zero();
     Eigen::Vector3d point_body = Eigen::Vector3d::Zero();
-    std::unique_ptr<fem::DistributingCoupling> coupling;
+    int coupling = -1;
   };
   struct Mass {
     std::string name;
     double mass_kg = 0;
     Eigen::Vector3d position_body = Eigen::Vector3d::Zero();
-    std::unique_ptr<fem::DistributingCoupling> coupling;
+    int coupling = -1;
   };
   LinkDefinition link_;
   int body_index_ = -1;
   Eigen::Vector3d gravity_world_ = Eigen::Vector3d::Zero();
   double tolerance_;
+  std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings_;
+  std::vector<std::string> coupling_face_sets_;
+  bool has_bearing_pressure_ = false;
+  Eigen::Matrix<double, 6, 12> body_force_resultants_;  // force; moment about the origin
   std::vector<Attached> joints_;
   std::vector<Mass> masses_;
   std::vector<Drive> drives_;

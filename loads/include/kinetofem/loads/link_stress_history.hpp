@@ -12,11 +12,23 @@
 // (fem::remove_rigid_body_motion), so it does not depend on which nodes the
 // 3-2-1 support holds.
 //
+// Two paths, the same results (to round-off; tests/verification/loads):
+//   * unit-load superposition (LoadPath::Superposition; the default when the
+//     link's loads allow it, LinkLoads::superposable()): the m load patterns
+//     of LinkLoads are solved and their stresses recovered once; every
+//     output time is the combination of the pattern fields with the frame's
+//     coefficients c(t) (a matrix product over blocks of times), so the cost
+//     of more output times is a GEMM, not a solve and a stress recovery.
+//     Patterns whose coefficient is exactly zero at every time are dropped.
+//   * step by step (LoadPath::StepByStep; forced for a link with a cosine
+//     bearing pressure, which is not linear in the force's direction): each
+//     output time's loads solved and recovered.
 // The support's six reactions are computed at every step from K u - f and
 // must vanish (the loads are self-equilibrated): above `reaction_tolerance`
 // of the link's total load (sum of the nodal force magnitudes) it is an
 // Error naming link and time.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,14 +39,30 @@
 
 namespace kinetofem::loads {
 
+enum class LoadPath { Auto, Superposition, StepByStep };
+
 struct LinkStressOptions {
   int block_size = 32;  // right-hand sides per block solve
+  // Auto: superposition when the link's loads allow it, else step by step.
+  // Superposition on a link with a bearing pressure is an Error.
+  LoadPath load_path = LoadPath::Auto;
+  // Frames whose fields go to the step callback (mask over the frames;
+  // empty = all). The envelope always covers every frame.
+  std::vector<bool> callback_steps;
   double reaction_tolerance = 1e-6;
   // Only the first `envelope_steps` frames enter the envelope (the rest, e.g.
   // a static pose study solved in the same block, go to the callback only);
   // 0 = all frames.
   std::size_t envelope_steps = 0;
   fem::StaticSolverOptions solver;  // direct, iterative, or chosen by the factor size
+};
+
+// The pattern solution of the superposition path: field(t) = fields * c(t).
+struct LinkLoadPatterns {
+  std::vector<std::string> names;           // of the kept patterns (LinkLoads::pattern_names)
+  Eigen::MatrixXd coefficients;             // m x frames
+  Eigen::MatrixXd elastic_displacement_m;   // 3 N x m, node-major (x, y, z), rigid-body motion removed
+  Eigen::MatrixXd stress_pa;                // 6 N x m, node-major Voigt (fem::StressField order)
 };
 
 struct LinkEnvelope {
@@ -55,11 +83,16 @@ struct LinkEnvelope {
   fem::CholmodStatistics solver;  // on the iterative path: the symbolic analysis only, if any
   bool iterative_solver = false;
   std::string solver_summary;     // fem::LinearStaticAnalysis::solver_summary()
+  // Superposition path: the patterns solved (else empty) and how many.
+  std::optional<LinkLoadPatterns> patterns;
+  long solved_right_hand_sides = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0, recovery_seconds = 0.0;
 };
 
-// Called once per frame, in order, with the elastic deformation (rigid-body
-// motion removed, body frame, m) and the nodal stresses (Pa).
+// Called once per frame (or per frame of options.callback_steps), in order,
+// with the elastic deformation (rigid-body motion removed, body frame, m) and
+// the nodal stresses (Pa; on the superposition path principal_pa is left
+// empty: nobody downstream needs it per step).
 using StepCallback = std::function<void(std::size_t step, const fem::DisplacementField& elastic_displacement,
                                         const fem::NodalStress& stress)>;
 

@@ -37,7 +37,9 @@ struct PartSummary {
   double factorize_seconds = 0, solve_seconds = 0;
   double assembly_seconds = 0, recovery_seconds = 0, analyze_seconds = 0;
   double factor_nonzeros = 0, factor_bytes = 0, factorization_flops = 0;
-  long right_hand_sides = 0;
+  long right_hand_sides = 0;  // solved: load patterns (superposition) or one per frame
+  long output_times = 0;
+  bool superposed = false;    // unit-load superposition (else step by step)
   double worst_equilibrium_residual = 0, worst_support_reaction = 0;
   double max_out_of_plane_moment_nm = 0;  // carried by the pins (loads off the mid-plane z = 0)
   bool iterative_solver = false;  // AMG-PCG instead of CHOLMOD (factor too large, or asked for)

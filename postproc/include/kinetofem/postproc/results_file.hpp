@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetofem/postproc/load_patterns.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 #include "kinetofem/postproc/results_layout.hpp"
 #include "kinetofem/solver/mesh.hpp"
@@ -32,7 +33,8 @@ struct FieldData {
 
 struct EnvelopeData {
   FieldMatrix values;  // N x c
-  IndexMatrix step;    // N x c, index into the body's series times
+  IndexMatrix step;    // N x c, index into times_s
+  std::vector<double> times_s;  // the envelope's own output times, or else the body's series times
   std::string units;
   std::string operation;  // "max", ...
 };
@@ -67,6 +69,11 @@ class ResultsFile {
 
   std::vector<std::string> envelopes(const std::string& body) const;
   EnvelopeData read_envelope(const std::string& body, const std::string& field) const;
+
+  // The body's load patterns (load_patterns.hpp); false: the body has none
+  // (a step-by-step run, or an older file).
+  bool has_load_patterns(const std::string& body) const;
+  LoadPatternData read_load_patterns(const std::string& body) const;
 
   std::vector<double> mechanism_time() const;  // s; empty: no histories
   std::vector<std::string> histories() const;

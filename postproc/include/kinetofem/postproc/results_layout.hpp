@@ -68,6 +68,12 @@ inline constexpr const char* kEnvelopes = "envelopes";
 inline constexpr const char* kEnvelopeValue = "value";
 inline constexpr const char* kEnvelopeStep = "step";
 inline constexpr const char* kMechanism = "mechanism";
+// Unit-load superposition of a body's motion (load_patterns.hpp).
+inline constexpr const char* kLoadPatterns = "load_patterns";
+inline constexpr const char* kPatternNames = "names";  // attribute of the group
+inline constexpr const char* kPatternCoefficients = "coefficients";
+inline constexpr const char* kPatternDisplacement = "elastic_displacement";
+inline constexpr const char* kPatternStress = "stress";
 inline constexpr const char* kDimensionless = "1";
 // Attribute (int64, 1) of the series dataset whose values are also the body's per-step geometry
 // (SeriesField::geometry).

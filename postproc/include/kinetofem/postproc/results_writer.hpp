@@ -46,6 +46,7 @@
 
 #include <Eigen/Core>
 
+#include "kinetofem/postproc/load_patterns.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 #include "kinetofem/postproc/results_layout.hpp"
 #include "kinetofem/solver/mesh.hpp"
@@ -107,12 +108,21 @@ class BodyWriter {
   fem::Index write_step(double time_s, std::initializer_list<StepValues> fields);
   fem::Index steps_written() const;
 
+  // The body's motion as load patterns and their coefficient histories
+  // (load_patterns.hpp), at /bodies/<body>/load_patterns (once per body).
+  // Throws Error naming the body for sizes that do not fit its mesh.
+  void write_load_patterns(const LoadPatternData& patterns);
+
   // Per-node extreme of a field over the series: values N x c and, for each
   // entry, the step (index into series/time) where it occurred.
   // `operation` names the extreme ("max", "min", "max_abs").
+  // `step_times_s`: the times the steps index (s), when the envelope covers
+  // more output times than the series holds (fields written at some output
+  // times only); stored as the envelope's own `time`. Empty: the series' times.
   void write_envelope(const std::string& name, const std::string& units,
                       const Eigen::Ref<const FieldMatrix>& values,
-                      const Eigen::Ref<const IndexMatrix>& step, const std::string& operation = "max");
+                      const Eigen::Ref<const IndexMatrix>& step, const std::string& operation = "max",
+                      const std::vector<double>& step_times_s = {});
 
  private:
   friend class ResultsWriter;

@@ -89,6 +89,18 @@ class RigidBodyMotionLoads {
                          const Eigen::Vector3d& angular_velocity_rad_s,
                          const Eigen::Vector3d& angular_acceleration_rad_s2) const;
 
+  // The same as basis() * coefficients(...): the 12 coefficients of the
+  // affine field b / rho = c + A x (c = g - a_O, A = -(skew(alpha) +
+  // skew(omega)^2)), in the basis' column order. Linear in c and A, so a
+  // history of motion states is a coefficient history on one fixed basis
+  // (loads::LinkLoads' load patterns).
+  static Eigen::Matrix<double, 12, 1> coefficients(const Eigen::Vector3d& gravity_m_s2,
+                                                   const Eigen::Vector3d& origin_acceleration_m_s2,
+                                                   const Eigen::Vector3d& angular_velocity_rad_s,
+                                                   const Eigen::Vector3d& angular_acceleration_rad_s2);
+  // 3 N x 12 consistent nodal forces of the basis fields (N per unit coefficient).
+  const Eigen::MatrixXd& basis() const { return basis_; }
+
   double mass_kg() const { return mass_; }
   const Eigen::Vector3d& centre_of_mass_m() const { return centre_of_mass_; }
 

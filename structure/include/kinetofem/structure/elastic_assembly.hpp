@@ -122,6 +122,9 @@ struct AssemblyOptions {
   // compliant drives (the unit-load method; three more right-hand sides of
   // the small system per point and pose).
   bool unit_load_split = true;
+  // Output times whose fields analyse_assembly_over_motion writes (mask over
+  // the motion; empty = all); histories and envelopes cover every one.
+  std::vector<bool> field_steps;
 };
 
 // Rigid motion alpha of a moving body (world axes): translation of its frame
