@@ -105,6 +105,14 @@ struct ElasticAssembly::Impl {
     std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings;  // per local interface
     std::vector<int> interfaces;                                        // global indices, local order
     Eigen::MatrixXd G, ZG, F;                                           // 3N x 6m, 3N x 6m, 6m x 6m (body axes)
+    // Unit-load superposition (AssemblyOptions::superpose_loads): the load
+    // patterns P of `loads` solved once, Z_p = K_s^-1 P (3N x p), their
+    // resultants (force; moment about the origin, body axes), and the nodal
+    // stresses of Z_G's and Z_p's columns (6N x 6m, 6N x p), so a pose costs
+    // products with its coefficients, not a solve and a stress recovery.
+    bool superposed = false;
+    Eigen::MatrixXd Zp, SG, Sp;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> Rp;
   };
   struct JointData {
     int joint = -1;
@@ -279,8 +287,12 @@ struct ElasticAssembly::Impl {
     return {degree(true), degree(false)};
   }
 
+  // coefficients: per part, its load patterns' coefficients at the frame
+  // (superposed parts; empty for the others).
   PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& load_displacement,
-                          const std::vector<Vector6d>& resultant_world);
+                          const std::vector<Vector6d>& resultant_world,
+                          const std::vector<Eigen::VectorXd>& coefficients);
+  void set_up_load_patterns(PartData& part);
   [[noreturn]] void explain_rank_deficiency(const mech::Frame& frame, const Pose& pose, const Eigen::MatrixXd& kernel,
                                             const Eigen::VectorXd& unscale, int rank, int n,
                                             const std::vector<std::string>& row_owner) const;
@@ -505,6 +517,9 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     stats.interface_columns += long(6 * m);
     if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
   }
+  if (options.superpose_loads)
+    for (auto& part : parts)
+      if (part->loads->superposable()) set_up_load_patterns(*part);
   stats.elastic_parts = int(parts.size());
   stats.rigid_bodies = moving_count - int(parts.size());
   stats.interfaces = int(interfaces.size());
@@ -513,9 +528,38 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
 
 // ---------------------------------------------------------------------------
 
+void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
+  const fem::Mesh& mesh = part.supported.mesh;
+  const fem::Index N = mesh.node_count();
+  const Eigen::MatrixXd P = part.loads->pattern_forces();
+  part.Rp.resize(6, P.cols());
+  for (Eigen::Index k = 0; k < P.cols(); ++k) {
+    Vector3d force, moment;
+    fem::resultant(mesh, P.col(k), Vector3d::Zero(), force, moment);
+    part.Rp.col(k) << force, moment;
+  }
+  part.Zp = solve_columns(*part.analysis, P);
+  if (part.rigid) part.Zp += part.rigid->correction(part.Zp);
+  if (options.recover_stress) {
+    auto stresses = [&](const Eigen::MatrixXd& Z) {
+      Eigen::MatrixXd S(6 * N, Z.cols());
+      for (Eigen::Index k = 0; k < Z.cols(); ++k) {
+        const fem::DisplacementField u = Eigen::Map<const fem::DisplacementField>(Z.col(k).data(), N, 3);
+        S.col(k) = Eigen::Map<const Eigen::VectorXd>(
+            fem::recover_nodal_stress(mesh, part.supported.material, u).stress_pa.data(), 6 * N);
+      }
+      return S;
+    };
+    part.SG = stresses(part.ZG);
+    part.Sp = stresses(part.Zp);
+  }
+  part.superposed = true;
+}
+
 PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
                                                const std::vector<Eigen::VectorXd>& load_displacement,
-                                               const std::vector<Vector6d>& resultant_world) {
+                                               const std::vector<Vector6d>& resultant_world,
+                                               const std::vector<Eigen::VectorXd>& coefficients) {
   Stopwatch clock;
   const Pose pose = pose_of(frame);
   const int M = int(interfaces.size()), B = moving_count;
@@ -837,7 +881,12 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     }
     const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
     field.max_displacement_m = magnitude.maxCoeff(&field.max_displacement_node);
-    if (options.recover_stress) {
+    if (options.recover_stress && part.superposed) {
+      const Eigen::VectorXd stress = part.SG * lambda_body + part.Sp * coefficients[p];
+      const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> s(stress.data(), 6, N);
+      field.von_mises_pa.resize(N);
+      for (fem::Index i = 0; i < N; ++i) field.von_mises_pa[i] = fem::von_mises(s.col(i));
+    } else if (options.recover_stress) {
       const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.data(), N, 3);
       field.von_mises_pa = fem::recover_nodal_stress(mesh, part.supported.material, ue).von_mises_pa;
     }
@@ -971,16 +1020,24 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
     }
     // Each part's loads for the block, one block solve.
     std::vector<Eigen::MatrixXd> load_displacement(im.parts.size());
+    std::vector<std::vector<Eigen::VectorXd>> coefficients(count, std::vector<Eigen::VectorXd>(im.parts.size()));
     for (size_t p = 0; p < im.parts.size(); ++p) {
       Impl::PartData& part = *im.parts[p];
       const fem::Mesh& mesh = part.supported.mesh;
       const int mb = im.moving[size_t(part.body_index)];
-      Eigen::MatrixXd Fl(3 * mesh.node_count(), Eigen::Index(count));
+      Eigen::MatrixXd Fl(part.superposed ? part.Zp.cols() : 3 * mesh.node_count(), Eigen::Index(count));
       for (size_t f = 0; f < count; ++f) {
         const mech::Frame& frame = frames[first + f];
-        Fl.col(Eigen::Index(f)) = part.loads->loads_at(frame).forces;
         Vector3d force, moment;
-        fem::resultant(mesh, Fl.col(Eigen::Index(f)), Vector3d::Zero(), force, moment);
+        if (part.superposed) {
+          Fl.col(Eigen::Index(f)) = coefficients[f][p] = part.loads->coefficients_at(frame).coefficients;
+          const Vector6d r = part.Rp * Fl.col(Eigen::Index(f));
+          force = r.head<3>();
+          moment = r.tail<3>();
+        } else {
+          Fl.col(Eigen::Index(f)) = part.loads->loads_at(frame).forces;
+          fem::resultant(mesh, Fl.col(Eigen::Index(f)), Vector3d::Zero(), force, moment);
+        }
         const Eigen::Matrix3d R = rot_z(frame.bodies[size_t(part.body_index)].q.z());
         Vector6d r;
         r << R * force, R * moment;
@@ -1001,8 +1058,12 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
       }
       im.stats.loads_seconds += clock.seconds();
       clock.restart();
-      load_displacement[p] = solve_columns(*part.analysis, Fl);
-      if (part.rigid) load_displacement[p] += part.rigid->correction(load_displacement[p]);
+      if (part.superposed) {
+        load_displacement[p] = part.Zp * Fl;  // Fl: the coefficients
+      } else {
+        load_displacement[p] = solve_columns(*part.analysis, Fl);
+        if (part.rigid) load_displacement[p] += part.rigid->correction(load_displacement[p]);
+      }
       im.stats.load_solve_seconds += clock.seconds();
       clock.restart();
     }
@@ -1010,7 +1071,7 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
     for (size_t f = 0; f < count; ++f) {
       std::vector<Eigen::VectorXd> z(im.parts.size());
       for (size_t p = 0; p < im.parts.size(); ++p) z[p] = load_displacement[p].col(Eigen::Index(f));
-      out.push_back(im.solve_pose(frames[first + f], z, resultants[f]));
+      out.push_back(im.solve_pose(frames[first + f], z, resultants[f], coefficients[f]));
       ++im.stats.poses;
     }
   }

@@ -100,6 +100,45 @@ TEST(LinkLoads, TransferredLoadsOfEveryLinkAreInEquilibriumOverTheMotion) {
   }
 }
 
+TEST(LinkLoads, LoadPatternsTimesCoefficientsAreTheLoadsOfEveryFrame) {
+  // Reference: loads_at (the nodal forces built frame by frame). The
+  // patterns' combination is the same sum in another order: 1e-12 of the
+  // largest nodal force.
+  const mech::MultibodyModel model = double_pendulum();
+  const mech::Results results = mech::run_kinematics(mech::MultibodySystem(model), times(10));
+  LinkDefinition link2{"link2", &link_model(), {{"J2", "bore_1"}}, {{"tip", "bore_2"}}, {{"D2", "bore_1"}}};
+  const LinkLoads loads(link2, model);
+  ASSERT_TRUE(loads.superposable());
+  const Eigen::MatrixXd P = loads.pattern_forces();
+  ASSERT_EQ(P.cols(), loads.pattern_count());
+  EXPECT_EQ(loads.pattern_count(), 12 + 6 * 2);  // bore_1 (joint and drive share it), bore_2 (the tip mass)
+  EXPECT_EQ(loads.pattern_names().size(), size_t(loads.pattern_count()));
+  EXPECT_EQ(loads.pattern_names()[12], "bore_1.F_x");
+  double worst = 0.0;
+  for (const auto& frame : results.frames) {
+    const Eigen::VectorXd f = loads.loads_at(frame).forces;
+    const LinkLoadCoefficients c = loads.coefficients_at(frame);
+    worst = std::max(worst, (P * c.coefficients - f).cwiseAbs().maxCoeff() / f.cwiseAbs().maxCoeff());
+    EXPECT_EQ(c.equilibrium_residual, loads.loads_at(frame).equilibrium_residual);
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(LinkLoads, BearingPressureIsNotAPatternCombination) {
+  const mech::MultibodyModel model = double_pendulum();
+  const mech::Results results = mech::run_kinematics(mech::MultibodySystem(model), times(2));
+  LinkDefinition link2{"link2", &link_model(), {{"J2", "bore_1", BoreLoad::BearingPressure}}, {{"tip", "bore_2"}},
+                       {{"D2", "bore_1"}}};
+  const LinkLoads loads(link2, model);
+  EXPECT_FALSE(loads.superposable());
+  try {
+    loads.coefficients_at(results.frames.front());
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bearing pressure"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LinkLoads, MismatchedMassPropertiesAreReportedWithLinkAndTime) {
   mech::MultibodyModel model = double_pendulum();
   model.bodies[2].mass_kg *= 1.05;  // the multibody arm 5 % heavier than its mesh

@@ -53,6 +53,10 @@
 //   whose rotation nothing holds, or the joints of a statically
 //   indeterminate loop of rigid bodies. Fields: u = Z_G lambda + Z_f +
 //   rigid(alpha), rotated to world axes.
+//   Unit-load superposition (AssemblyOptions::superpose_loads, default):
+//   f_loads = P c(t) with the fixed load patterns P of loads::LinkLoads, so
+//   Z_f = (K_s^-1 P) c and the stress (S_G lambda + S_p c) come from
+//   columns solved and recovered once; a pose costs no part solve.
 //
 // SI units: m, rad, N, N m, Pa.
 #include <limits>
@@ -122,6 +126,11 @@ struct AssemblyOptions {
   // compliant drives (the unit-load method; three more right-hand sides of
   // the small system per point and pose).
   bool unit_load_split = true;
+  // Each part's loads as loads::LinkLoads' load patterns, solved (and their
+  // stresses recovered) once: a pose costs matrix products with the pattern
+  // coefficients, not a solve and a stress recovery per part. Exact (to
+  // round-off); false: one solve per pose (the reference in the tests).
+  bool superpose_loads = true;
   // Output times whose fields analyse_assembly_over_motion writes (mask over
   // the motion; empty = all); histories and envelopes cover every one.
   std::vector<bool> field_steps;
