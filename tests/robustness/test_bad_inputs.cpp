@@ -38,7 +38,7 @@ std::vector<std::string> catalogue() {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(kData, ec)) {
     const std::string name = entry.path().filename().string();
-    if (entry.is_directory() && std::regex_match(name, std::regex("[0-9][0-9]_[a-z0-9_]+"))) names.push_back(name);
+    if (entry.is_directory() && std::regex_match(name, std::regex("[0-9]{2,3}_[a-z0-9_]+"))) names.push_back(name);
   }
   std::sort(names.begin(), names.end());
   return names;

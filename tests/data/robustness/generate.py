@@ -582,6 +582,18 @@ add("assembly_crank_held_by_motor_torque", {"case.toml": FREE_CRANK})
 RIGID_LEVER = sub(sub(CHAIN, '[[part]]\nbody = "lever"\nsource = "lever"\n\n', ""), 'face_i = "bore_A"\n', "").replace('body_j = "lever"\nface_j = "bore_A0"\n', 'body_j = "lever"\n')
 add("assembly_displacement_drive", {"case.toml": sub(sub(RIGID_LEVER, 'coordinate = "angle"\nbody_i = "frame"\nbody_j = "lever"\n', 'coordinate = "displacement"\nbody_i = "frame"\nbody_j = "lever"\npoint_j = "A"\n'), "stroke_deg = 80.0", "stroke_mm = -300.0")})
 
+# --- issue 13: unit-load superposition and field output times
+E.update({
+    "field_times_outside_the_motion": "case.toml:31: key 'output.field_times_s': 5 s is outside the motion [0, 2] s",
+    "field_times_not_numbers": "case.toml:31: key 'output.field_times_s': every element must be a time in s",
+    "superposition_with_bearing_pressure": "link 'lever': unit-load superposition was asked for, but a joint's cosine bearing pressure is not a combination of fixed load patterns",
+    "manipulator_factor_exceeds_memory_limit": "more than the 0.0001 GB allowed: coarsen the mesh or raise the limit",
+})
+add("field_times_outside_the_motion", {"case.toml": MAN + "\n[output]\nfield_times_s = [0.5, 5.0]\n"})
+add("field_times_not_numbers", {"case.toml": MAN + "\n[output]\nfield_times_s = [\"end\"]\n"})
+add("superposition_with_bearing_pressure", {"case.toml": MAN + "\n[loads]\nbore_load = \"bearing\"\n\n[solver]\nload_path = \"superposition\"\n"})
+add("manipulator_factor_exceeds_memory_limit", {"case.toml": MAN + "\n[solver]\nmethod = \"direct\"\nmax_factor_gb = 0.0001\n"})
+
 VALID = {"valid_cube": {"case.toml": CUBE, "cube.msh": cube_msh()}}
 
 os.makedirs(ROOT, exist_ok=True)
