@@ -39,17 +39,8 @@ struct PostOptions {
   bool all = false;
   double deformation_scale = 0.0;  // 0: automatic
   std::string image_size = "1400x900";
+  std::optional<double> at_time_s;  // --at: reconstruct this output time's fields from the load patterns
 };
-
-// "WIDTHxHEIGHT" in px.
-std::pair<int, int> parse_image_size(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, rest = 0;
-  require(std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && (x == 'x' || x == 'X'),
-          "--image-size '{}': expected WIDTHxHEIGHT in px, e.g. 1400x900", text);
-  require(w >= 400 && h >= 300 && w <= 8000 && h <= 8000, "--image-size '{}': from 400x300 to 8000x8000 px", text);
-  return {w, h};
-}
 
 // What --history names: a node, a point (m) or a mechanism history.
 struct HistorySpec {
@@ -220,6 +211,62 @@ std::string file_safe(std::string s) {
   return s;
 }
 
+// --at T: every body with load patterns (a superposition run) at the output
+// time nearest T, its fields reconstructed exactly from the patterns
+// (post::superpose): printed peak, and with --csv a file per body.
+void print_fields_at(const post::ResultsFile& r, double at_s, const fs::path& csv_dir, std::vector<std::string>& written) {
+  bool any = false;
+  for (const auto& body : r.bodies()) {
+    if (!r.has_load_patterns(body)) continue;
+    const post::LoadPatternData patterns = r.read_load_patterns(body);
+    const std::vector<double>& t = patterns.time_s;
+    require(!t.empty() && at_s >= t.front() - 1e-12 && at_s <= t.back() + 1e-12,
+            "--at {} s: outside the motion of body '{}' ([{}, {}] s)", at_s, body, t.front(), t.back());
+    const auto nearest = std::min_element(t.begin(), t.end(), [&](double a, double b) {
+      return std::abs(a - at_s) < std::abs(b - at_s);
+    });
+    const Eigen::Index step = Eigen::Index(nearest - t.begin());
+    const post::SuperposedFields f = post::superpose(patterns, step);
+    const fem::Mesh mesh = r.read_mesh(body);
+    fem::Index node = 0;
+    const double peak = f.von_mises_pa.maxCoeff(&node);
+    const Eigen::VectorXd magnitude = f.elastic_displacement_m.rowwise().norm();
+    fmt::print("  {} at t = {:.6g} s (output time {} of {}, from {} load patterns): peak von Mises {:.4f} MPa at node {} "
+               "({:.1f}, {:.1f}, {:.1f}) mm; max |u| {:.5f} mm\n",
+               body, t[size_t(step)], step, t.size(), patterns.names.size(), peak * 1e-6, node,
+               mesh.nodes(node, 0) * 1e3, mesh.nodes(node, 1) * 1e3, mesh.nodes(node, 2) * 1e3, magnitude.maxCoeff() * 1e3);
+    any = true;
+    if (csv_dir.empty()) continue;
+    make_directory(csv_dir, "--csv");
+    const fs::path p = csv_dir / fmt::format("{}_at_{:.6g}s.csv", file_safe(body), t[size_t(step)]);
+    std::FILE* out = std::fopen(p.string().c_str(), "w");
+    require(out != nullptr, "{}: cannot be written", p.string());
+    std::fprintf(out, "node,x_mm,y_mm,z_mm,u_x_mm,u_y_mm,u_z_mm,von_mises_MPa,s_xx_MPa,s_yy_MPa,s_zz_MPa,s_xy_MPa,s_yz_MPa,s_zx_MPa\n");
+    for (fem::Index i = 0; i < mesh.node_count(); ++i) {
+      std::fprintf(out, "%ld,%.6g,%.6g,%.6g,%.9g,%.9g,%.9g,%.9g", long(i), mesh.nodes(i, 0) * 1e3, mesh.nodes(i, 1) * 1e3,
+                   mesh.nodes(i, 2) * 1e3, f.elastic_displacement_m(i, 0) * 1e3, f.elastic_displacement_m(i, 1) * 1e3,
+                   f.elastic_displacement_m(i, 2) * 1e3, f.von_mises_pa[i] * 1e-6);
+      for (int c = 0; c < 6; ++c) std::fprintf(out, ",%.9g", f.stress_pa(i, c) * 1e-6);
+      std::fprintf(out, "\n");
+    }
+    require(std::fclose(out) == 0, "{}: write failed", p.string());
+    written.push_back(p.string());
+  }
+  require(any, "--at: no body of '{}' has load patterns (a run with solver.load_path = \"step_by_step\", or an older "
+          "file); its written steps are in the series", r.path().string());
+}
+
+// "WIDTHxHEIGHT" in px.
+std::pair<int, int> parse_image_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, rest = 0;
+  require(std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && (x == 'x' || x == 'X'),
+          "--image-size '{}': expected WIDTHxHEIGHT in px, e.g. 1400x900", text);
+  require(w >= 400 && h >= 300 && w <= 8000 && h <= 8000, "--image-size '{}': from 400x300 to 8000x8000 px", text);
+  return {w, h};
+}
+
+
 // The pictures of the elastic assembly: the static pose study, the step of the
 // largest deflection of the gripper point H, and each tracked point's deflection.
 void write_assembly_pictures(const post::ResultsFile& r, const post::AssemblyContents& assembly, const fs::path& png_dir,
@@ -277,6 +324,7 @@ int run_post(const PostOptions& o) {
     if (png_dir.empty()) png_dir = dir;
   }
   std::vector<std::string> written;
+  if (o.at_time_s) print_fields_at(r, *o.at_time_s, csv_dir, written);
   if (!csv_dir.empty()) {
     make_directory(csv_dir, "--csv");
     if (!envelopes.empty()) {
@@ -360,6 +408,9 @@ void add_post_command(CLI::App& app, CommandContext& context) {
       ->capture_default_str();
   post->add_option("--image-size", o->image_size, "Size of the PNG pictures, WIDTHxHEIGHT in px")
       ->capture_default_str();
+  post->add_option("--at", o->at_time_s,
+                   "Reconstruct the fields at the output time nearest this time (s) from the stored load patterns "
+                   "(exact; also times whose fields were not written); with --csv, a CSV per body");
   post->add_flag("--all", o->all, "Write every CSV and PNG into <result dir>/<name>_post/");
   post->callback([o, &context] { context.exit_code = run_post(*o); });
 }

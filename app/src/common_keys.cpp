@@ -44,8 +44,10 @@ std::vector<KeySpec> solver_keys() {
       {.path = "solver.method", .type = Type::String, .default_text = "auto", .allowed = {"auto", "direct", "iterative"},
        .doc = "linear solver of the FE solves: 'direct' (CHOLMOD Cholesky), 'iterative' (CG with algebraic multigrid, "
               "hypre BoomerAMG), 'auto' (direct unless the symbolic analysis predicts a factor above max_factor_gb)"},
-      {.path = "solver.ordering", .type = Type::String, .default_text = "metis", .allowed = {"metis", "amd", "best"},
-       .doc = "fill-reducing ordering of the Cholesky factorization"},
+      {.path = "solver.ordering", .type = Type::String, .default_text = "metis", .allowed = {"metis", "metis_dof", "amd", "best"},
+       .doc = "fill-reducing ordering of the Cholesky factorization: metis (nested dissection of the mesh's node "
+              "graph, expanded to the DoFs; about 1.7-2x faster analysis than on the DoF graph), metis_dof "
+              "(CHOLMOD's METIS on the DoF graph), amd, best (CHOLMOD's default: AMD, METIS if better)"},
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
        .doc = "memory allowed for a Cholesky factor; 0 = 80 % of physical memory. Above it: 'direct' stops with an "
               "error before the numeric factorization, 'auto' switches to 'iterative'"},
@@ -63,9 +65,10 @@ fem::StaticSolverOptions read_solver_options(const CaseFile& c) {
                    : method == "iterative" ? fem::LinearSolverMethod::Iterative
                                            : fem::LinearSolverMethod::Auto;
   const std::string ordering = c.text_value("solver.ordering");
-  options.direct.ordering = ordering == "amd"    ? fem::CholmodOptions::Ordering::Amd
-                            : ordering == "best" ? fem::CholmodOptions::Ordering::Best
-                                                 : fem::CholmodOptions::Ordering::Metis;
+  options.direct.ordering = ordering == "amd"         ? fem::CholmodOptions::Ordering::Amd
+                            : ordering == "best"      ? fem::CholmodOptions::Ordering::Best
+                            : ordering == "metis_dof" ? fem::CholmodOptions::Ordering::Metis
+                                                      : fem::CholmodOptions::Ordering::NodeGraphMetis;
   options.direct.max_factor_bytes = c.number("solver.max_factor_gb") * 1e9;
   options.iterative.relative_tolerance = c.number("solver.pcg_tolerance");
   options.iterative.max_iterations = int(c.integer("solver.pcg_max_iterations"));

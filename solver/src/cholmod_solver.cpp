@@ -94,6 +94,7 @@ struct CholmodSolver::Impl {
 CholmodSolver::CholmodSolver(CholmodOptions options, const Log* log)
     : impl_(std::make_unique<Impl>()), options_(options), log_(log) {
   switch (options_.ordering) {
+    case CholmodOptions::Ordering::NodeGraphMetis:  // without a given ordering: CHOLMOD's METIS
     case CholmodOptions::Ordering::Metis:
       impl_->common.nmethods = 1;
       impl_->common.method[0].ordering = CHOLMOD_METIS;
@@ -116,25 +117,67 @@ CholmodSolver::CholmodSolver(CholmodOptions options, const Log* log)
 
 CholmodSolver::~CholmodSolver() = default;
 
-void CholmodSolver::analyze(const SymmetricUpperMatrix& matrix) {
+void CholmodSolver::analyze(const SymmetricUpperMatrix& matrix) { analyze_with(matrix, nullptr); }
+
+void CholmodSolver::analyze(const SymmetricUpperMatrix& matrix, const GivenOrdering& ordering) {
+  analyze_with(matrix, &ordering);
+}
+
+void CholmodSolver::analyze_with(const SymmetricUpperMatrix& matrix, const GivenOrdering* given) {
   Stopwatch clock;
   impl_->wrap(matrix);
   if (impl_->factor) cholmod_l_free_factor(&impl_->factor, &impl_->common);
-  impl_->factor = cholmod_l_analyze(&impl_->view, &impl_->common);
-  impl_->check("cholmod_l_analyze");
-  require(impl_->factor != nullptr, "CHOLMOD cholmod_l_analyze returned no factor");
+  if (given) {
+    // A permutation of 0..n-1, checked here so that a bad one is named as
+    // such (CHOLMOD would only say "invalid input").
+    const auto n = std::int64_t(matrix.rows());
+    const auto& p = given->permutation;
+    require(std::int64_t(p.size()) == n,
+            "CHOLMOD analyze: the given ordering '{}' has {} entries, the matrix {} equations",
+            given->name, p.size(), n);
+    std::vector<char> seen(size_t(n), 0);
+    for (std::int64_t k = 0; k < n; ++k) {
+      const std::int64_t e = p[size_t(k)];
+      require(e >= 0 && e < n && !seen[size_t(e)],
+              "CHOLMOD analyze: the given ordering '{}' is not a permutation (entry {} is {})",
+              given->name, k, e);
+      seen[size_t(e)] = 1;
+    }
+    // Only the given permutation (then CHOLMOD's postorder of its etree); the
+    // configured methods are restored afterwards for a later analyze(matrix).
+    static_assert(sizeof(SuiteSparse_long) == sizeof(std::int64_t));
+    cholmod_common& c = impl_->common;
+    const int nmethods = c.nmethods, method0 = c.method[0].ordering, postorder = c.postorder;
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    c.postorder = 1;
+    impl_->factor = cholmod_l_analyze_p(
+        &impl_->view,
+        const_cast<SuiteSparse_long*>(reinterpret_cast<const SuiteSparse_long*>(p.data())),
+        nullptr, 0, &c);
+    c.nmethods = nmethods;
+    c.method[0].ordering = method0;
+    c.postorder = postorder;
+    impl_->check("cholmod_l_analyze_p");
+    require(impl_->factor != nullptr, "CHOLMOD cholmod_l_analyze_p returned no factor");
+  } else {
+    impl_->factor = cholmod_l_analyze(&impl_->view, &impl_->common);
+    impl_->check("cholmod_l_analyze");
+    require(impl_->factor != nullptr, "CHOLMOD cholmod_l_analyze returned no factor");
+  }
   stats_ = CholmodStatistics{};
   stats_.equations = matrix.rows();
   stats_.matrix_nonzeros = matrix.nonZeros();
   stats_.factor_nonzeros = impl_->common.lnz;
   stats_.factorization_flops = impl_->common.fl;
-  stats_.ordering = ordering_name(impl_->factor->ordering);
+  stats_.ordering = given ? given->name : ordering_name(impl_->factor->ordering);
   // Supernodal numeric factor: xsize doubles of values plus the integer
   // structure already allocated by the symbolic analysis.
   const double values = impl_->factor->is_super ? double(impl_->factor->xsize)
                                                 : impl_->common.lnz;
   stats_.factor_bytes = values * sizeof(double);
-  stats_.analyze_seconds = clock.seconds();
+  stats_.ordering_seconds = given ? given->seconds : 0.0;
+  stats_.analyze_seconds = clock.seconds() + stats_.ordering_seconds;
   const double limit =
       options_.max_factor_bytes > 0 ? options_.max_factor_bytes : 0.8 * physical_memory_bytes();
   if (stats_.factor_bytes > limit)
@@ -161,7 +204,12 @@ void CholmodSolver::factorize(const SymmetricUpperMatrix& matrix) {
   if (!ok) fail("CHOLMOD cholmod_l_factorize failed (status {})", impl_->common.status);
   if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
       impl_->factor->minor < impl_->factor->n) {
-    const auto equation = std::int64_t(impl_->factor->minor);
+    // L->minor is a column of the permuted matrix K(p, p); name the equation
+    // of K itself.
+    const auto minor = std::int64_t(impl_->factor->minor);
+    const auto* perm = static_cast<const SuiteSparse_long*>(impl_->factor->Perm);
+    const auto equation =
+        perm && minor >= 0 && minor < stats_.equations ? std::int64_t(perm[minor]) : minor;
     throw NotPositiveDefinite(
         fmt::format("stiffness matrix is not positive definite: the Cholesky factorization "
                     "broke down at equation {} of {} (a rigid-body mode left unsupported, or an "

@@ -1,6 +1,7 @@
 #include "kinetofem/solver/static_analysis.hpp"
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/solver/node_graph_ordering.hpp"
 
 namespace kinetofem::fem {
 
@@ -32,7 +33,17 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
   bool iterative = options.method == LinearSolverMethod::Iterative;
   if (!iterative) {
     try {
-      solver_.analyze(stiffness_.free_free);
+      if (options.direct.ordering == CholmodOptions::Ordering::NodeGraphMetis) {
+        // METIS on the node graph (node_graph_ordering.hpp): about the fill of
+        // CHOLMOD's METIS on the DoF graph (+2 %), a 1.6-2x faster analysis.
+        NodeGraphOrderingTimes t;
+        const GivenOrdering ordering = node_graph_ordering(mesh, dofs_, &t);
+        log_.info("  ordering: METIS on the node graph, graph {:.3f} s, METIS_NodeND {:.3f} s",
+                  t.graph_seconds, t.metis_seconds);
+        solver_.analyze(stiffness_.free_free, ordering);
+      } else {
+        solver_.analyze(stiffness_.free_free);
+      }
     } catch (const Error& error) {
       // analyze() fills its statistics before it compares the predicted factor
       // with the limit, so filled statistics mean the limit was the reason;

@@ -289,9 +289,20 @@ struct ElasticAssembly::Impl {
 
   // coefficients: per part, its load patterns' coefficients at the frame
   // (superposed parts; empty for the others).
+  // What a pose leaves for its fields: per part, the interface loads
+  // (body axes) and the rigid motion (body axes) of its solution.
+  struct FieldInputs {
+    std::vector<Eigen::VectorXd> lambda_body;
+    std::vector<Vector3d> translation, rotation;
+  };
   PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& load_displacement,
-                          const std::vector<Vector6d>& resultant_world,
-                          const std::vector<Eigen::VectorXd>& coefficients);
+                          const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs);
+  // The parts' fields of a block of solved poses: u = Z_G lambda + Z_f +
+  // rigid, von Mises from S_G lambda + S_p c (superposed) or recovered, as
+  // block products over the poses (not one matrix-vector product per pose).
+  void add_fields(std::vector<PoseSolution>& poses, const std::vector<mech::Frame>& frames,
+                  const std::vector<FieldInputs>& inputs, const std::vector<Eigen::MatrixXd>& load_displacement,
+                  const std::vector<Eigen::MatrixXd>& coefficients);
   void set_up_load_patterns(PartData& part);
   [[noreturn]] void explain_rank_deficiency(const mech::Frame& frame, const Pose& pose, const Eigen::MatrixXd& kernel,
                                             const Eigen::VectorXd& unscale, int rank, int n,
@@ -528,6 +539,54 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
 
 // ---------------------------------------------------------------------------
 
+void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const std::vector<mech::Frame>& frames,
+                                       const std::vector<FieldInputs>& inputs,
+                                       const std::vector<Eigen::MatrixXd>& load_displacement,
+                                       const std::vector<Eigen::MatrixXd>& coefficients) {
+  Stopwatch clock;
+  const Eigen::Index count = Eigen::Index(poses.size());
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const PartData& part = *parts[p];
+    const fem::Mesh& mesh = part.supported.mesh;
+    const fem::Index N = mesh.node_count();
+    Eigen::MatrixXd lambda(part.ZG.cols(), count);
+    for (Eigen::Index f = 0; f < count; ++f) lambda.col(f) = inputs[size_t(f)].lambda_body[p];
+    const Eigen::MatrixXd elastic = part.ZG * lambda + load_displacement[p];
+    Eigen::MatrixXd stress;
+    if (options.recover_stress && part.superposed) stress = part.SG * lambda + part.Sp * coefficients[p];
+    for (Eigen::Index f = 0; f < count; ++f) {
+      const Eigen::Matrix3d R = rot_z(frames[size_t(f)].bodies[size_t(part.body_index)].q.z());
+      const Vector3d& t = inputs[size_t(f)].translation[p];
+      const Vector3d& w = inputs[size_t(f)].rotation[p];
+      PartField field;
+      field.body = part.body;
+      field.displacement_m.resize(N, 3);
+      for (fem::Index i = 0; i < N; ++i) {
+        const Vector3d X = mesh.nodes.row(i).transpose();
+        const Vector3d ub = elastic.col(f).segment<3>(3 * i) + t + w.cross(X);
+        field.displacement_m.row(i) = (R * ub).transpose();
+      }
+      const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
+      field.max_displacement_m = magnitude.maxCoeff(&field.max_displacement_node);
+      if (options.recover_stress && part.superposed) {
+        const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> sv(stress.col(f).data(), 6, N);
+        field.von_mises_pa.resize(N);
+        for (fem::Index i = 0; i < N; ++i) field.von_mises_pa[i] = fem::von_mises(sv.col(i));
+      } else if (options.recover_stress) {
+        const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.col(f).data(), N, 3);
+        field.von_mises_pa = fem::recover_nodal_stress(mesh, part.supported.material, ue).von_mises_pa;
+      }
+      PoseSolution& out = poses[size_t(f)];
+      if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
+        out.max_displacement_m = field.max_displacement_m;
+        out.max_displacement_body = field.body;
+      }
+      out.parts.push_back(std::move(field));
+    }
+  }
+  stats.recovery_seconds += clock.seconds();
+}
+
 void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
   const fem::Mesh& mesh = part.supported.mesh;
   const fem::Index N = mesh.node_count();
@@ -558,8 +617,7 @@ void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
 
 PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
                                                const std::vector<Eigen::VectorXd>& load_displacement,
-                                               const std::vector<Vector6d>& resultant_world,
-                                               const std::vector<Eigen::VectorXd>& coefficients) {
+                                               const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
   Stopwatch clock;
   const Pose pose = pose_of(frame);
   const int M = int(interfaces.size()), B = moving_count;
@@ -857,7 +915,10 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     out.points.push_back(pr);
   }
 
-  // Fields: u = Z_G lambda + Z_f + rigid(alpha), body axes, then world.
+  // What the fields need (add_fields): u = Z_G lambda + Z_f + rigid(alpha).
+  field_inputs.lambda_body.resize(parts.size());
+  field_inputs.translation.resize(parts.size());
+  field_inputs.rotation.resize(parts.size());
   for (size_t p = 0; p < parts.size(); ++p) {
     const PartData& part = *parts[p];
     const int b = part.body_index;
@@ -866,35 +927,9 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     Eigen::VectorXd lambda_body(6 * Eigen::Index(part.interfaces.size()));
     for (size_t l = 0; l < part.interfaces.size(); ++l)
       lambda_body.segment<6>(6 * Eigen::Index(l)) = Q.transpose() * lambda_of(part.interfaces[l]);
-    const Eigen::VectorXd elastic = part.ZG * lambda_body + load_displacement[p];
-    const Vector3d t = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)]);
-    const Vector3d w = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)] + 3);
-    const fem::Mesh& mesh = part.supported.mesh;
-    const fem::Index N = mesh.node_count();
-    PartField field;
-    field.body = part.body;
-    field.displacement_m.resize(N, 3);
-    for (fem::Index i = 0; i < N; ++i) {
-      const Vector3d X = mesh.nodes.row(i).transpose();
-      const Vector3d ub = elastic.segment<3>(3 * i) + t + w.cross(X);
-      field.displacement_m.row(i) = (R * ub).transpose();
-    }
-    const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
-    field.max_displacement_m = magnitude.maxCoeff(&field.max_displacement_node);
-    if (options.recover_stress && part.superposed) {
-      const Eigen::VectorXd stress = part.SG * lambda_body + part.Sp * coefficients[p];
-      const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> s(stress.data(), 6, N);
-      field.von_mises_pa.resize(N);
-      for (fem::Index i = 0; i < N; ++i) field.von_mises_pa[i] = fem::von_mises(s.col(i));
-    } else if (options.recover_stress) {
-      const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.data(), N, 3);
-      field.von_mises_pa = fem::recover_nodal_stress(mesh, part.supported.material, ue).von_mises_pa;
-    }
-    if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
-      out.max_displacement_m = field.max_displacement_m;
-      out.max_displacement_body = field.body;
-    }
-    out.parts.push_back(std::move(field));
+    field_inputs.lambda_body[p] = std::move(lambda_body);
+    field_inputs.translation[p] = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)]);
+    field_inputs.rotation[p] = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)] + 3);
   }
   stats.recovery_seconds += clock.seconds();
   return out;
@@ -1068,12 +1103,23 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
       clock.restart();
     }
     im.stats.loads_seconds += clock.seconds();  // the rigid bodies' resultants (no parts: all of it)
+    std::vector<PoseSolution> block_poses;
+    std::vector<Impl::FieldInputs> inputs(count);
     for (size_t f = 0; f < count; ++f) {
       std::vector<Eigen::VectorXd> z(im.parts.size());
       for (size_t p = 0; p < im.parts.size(); ++p) z[p] = load_displacement[p].col(Eigen::Index(f));
-      out.push_back(im.solve_pose(frames[first + f], z, resultants[f], coefficients[f]));
+      block_poses.push_back(im.solve_pose(frames[first + f], z, resultants[f], inputs[f]));
       ++im.stats.poses;
     }
+    std::vector<Eigen::MatrixXd> block_coefficients(im.parts.size());
+    for (size_t p = 0; p < im.parts.size(); ++p)
+      if (im.parts[p]->superposed) {
+        block_coefficients[p].resize(im.parts[p]->Zp.cols(), Eigen::Index(count));
+        for (size_t f = 0; f < count; ++f) block_coefficients[p].col(Eigen::Index(f)) = coefficients[f][p];
+      }
+    const std::vector<mech::Frame> block_frames(frames.begin() + long(first), frames.begin() + long(first + count));
+    im.add_fields(block_poses, block_frames, inputs, load_displacement, block_coefficients);
+    for (auto& pose : block_poses) out.push_back(std::move(pose));
   }
   im.stats.unknowns = out.back().unknowns;
   return out;

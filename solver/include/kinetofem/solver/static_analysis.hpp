@@ -10,6 +10,11 @@
 // analysis (cheap: ordering + factor size, no numeric work) and takes the
 // iterative path only when the predicted factor exceeds max_factor_bytes,
 // printing the decision and why.
+//
+// Ordering of the direct path: CholmodOptions::Ordering::NodeGraphMetis (the
+// default) orders the mesh's node graph with METIS and gives the expanded
+// permutation to CHOLMOD (node_graph_ordering.hpp); Metis, Amd and Best leave
+// the ordering to CHOLMOD.
 #include <memory>
 #include <string>
 #include <vector>

@@ -1,0 +1,16 @@
+# Finds METIS 5 (Debian libmetis-dev: /usr/include/metis.h, libmetis.so; no
+# CMake config file) and defines the imported target METIS::METIS. The solver
+# calls METIS_NodeND itself for the node-graph ordering
+# (solver/include/kinetofem/solver/node_graph_ordering.hpp); it is the same
+# library CHOLMOD's METIS ordering links (cmake/FindCHOLMOD.cmake).
+find_path(METIS_INCLUDE_DIR metis.h PATH_SUFFIXES metis)
+find_library(METIS_LIBRARY metis)
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(METIS REQUIRED_VARS METIS_LIBRARY METIS_INCLUDE_DIR)
+if(METIS_FOUND AND NOT TARGET METIS::METIS)
+  add_library(METIS::METIS UNKNOWN IMPORTED)
+  set_target_properties(METIS::METIS PROPERTIES
+    IMPORTED_LOCATION "${METIS_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${METIS_INCLUDE_DIR}")
+endif()
+mark_as_advanced(METIS_INCLUDE_DIR METIS_LIBRARY)
