@@ -105,10 +105,9 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
     }
     for (size_t p = 0; p < parts.size(); ++p) {
       const PartField& field = pose.part(parts[p].body());
-      const post::FieldMatrix X = world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])]);
       const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
       if (options.field_steps.empty() || options.field_steps.at(k))
-        bodies[p]->write_step(frame.t, {{"position", X},
+        bodies[p]->write_step(frame.t, {{"position", world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])])},
                                         {"displacement", field.displacement_m},
                                         {"displacement_magnitude", magnitude},
                                         {"von_mises", field.von_mises_pa}});
@@ -305,8 +304,12 @@ std::string format_assembly_summary(const AssemblySummary& s) {
                          v.x() / kMm, v.y() / kMm, v.z() / kMm, split_text(v, p.static_contributions));
     }
   }
-  out += fmt::format("    cost: setup {:.2f} s (factorizations {:.2f} s, interface solves), {:.1f} ms per pose\n",
-                     s.statistics.setup_seconds, s.statistics.factorize_seconds, 1e3 * s.statistics.pose_seconds());
+  const AssemblyStatistics& st = s.statistics;
+  const double per_pose = st.poses > 0 ? 1e3 / double(st.poses) : 0.0;
+  out += fmt::format("    cost: setup {:.2f} s (factorizations {:.2f} s, interface and load-pattern solves), {:.2f} ms "
+                     "per pose (loads {:.2f}, load fields {:.2f}, system {:.2f}, fields {:.2f})\n",
+                     st.setup_seconds, st.factorize_seconds, 1e3 * st.pose_seconds(), st.loads_seconds * per_pose,
+                     st.load_solve_seconds * per_pose, st.system_seconds * per_pose, st.recovery_seconds * per_pose);
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/solver/couplings.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
+#include "kinetofem/solver/dense_product.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
 
 namespace kinetofem::structure {
@@ -111,7 +112,7 @@ struct ElasticAssembly::Impl {
     // stresses of Z_G's and Z_p's columns (6N x 6m, 6N x p), so a pose costs
     // products with its coefficients, not a solve and a stress recovery.
     bool superposed = false;
-    Eigen::MatrixXd Zp, SG, Sp;
+    Eigen::MatrixXd Zp, SG, Sp, GtZp;  // GtZp = G^T Z_p (6m x p)
     Eigen::Matrix<double, 6, Eigen::Dynamic> Rp;
   };
   struct JointData {
@@ -295,7 +296,8 @@ struct ElasticAssembly::Impl {
     std::vector<Eigen::VectorXd> lambda_body;
     std::vector<Vector3d> translation, rotation;
   };
-  PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& load_displacement,
+  // interface_load_displacement: per part G^T Z_f (6m, body axes).
+  PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& interface_load_displacement,
                           const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs);
   // The parts' fields of a block of solved poses: u = Z_G lambda + Z_f +
   // rigid, von Mises from S_G lambda + S_p c (superposed) or recovered, as
@@ -551,9 +553,14 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
     const fem::Index N = mesh.node_count();
     Eigen::MatrixXd lambda(part.ZG.cols(), count);
     for (Eigen::Index f = 0; f < count; ++f) lambda.col(f) = inputs[size_t(f)].lambda_body[p];
-    const Eigen::MatrixXd elastic = part.ZG * lambda + load_displacement[p];
+    Eigen::MatrixXd elastic = load_displacement[p];
+    fem::blas_product(part.ZG, lambda, elastic, 1.0);
     Eigen::MatrixXd stress;
-    if (options.recover_stress && part.superposed) stress = part.SG * lambda + part.Sp * coefficients[p];
+    if (options.recover_stress && part.superposed) {
+      stress.resize(part.SG.rows(), count);
+      fem::blas_product(part.SG, lambda, stress);
+      fem::blas_product(part.Sp, coefficients[p], stress, 1.0);
+    }
     for (Eigen::Index f = 0; f < count; ++f) {
       const Eigen::Matrix3d R = rot_z(frames[size_t(f)].bodies[size_t(part.body_index)].q.z());
       const Vector3d& t = inputs[size_t(f)].translation[p];
@@ -561,18 +568,19 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
       PartField field;
       field.body = part.body;
       field.displacement_m.resize(N, 3);
+      const bool stress_from_patterns = options.recover_stress && part.superposed;
+      if (stress_from_patterns) field.von_mises_pa.resize(N);
+      const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> sv(
+          stress_from_patterns ? stress.col(f).data() : nullptr, 6, stress_from_patterns ? N : 0);
+#pragma omp parallel for schedule(static)
       for (fem::Index i = 0; i < N; ++i) {
         const Vector3d X = mesh.nodes.row(i).transpose();
         const Vector3d ub = elastic.col(f).segment<3>(3 * i) + t + w.cross(X);
         field.displacement_m.row(i) = (R * ub).transpose();
+        if (stress_from_patterns) field.von_mises_pa[i] = fem::von_mises(sv.col(i));
       }
-      const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
-      field.max_displacement_m = magnitude.maxCoeff(&field.max_displacement_node);
-      if (options.recover_stress && part.superposed) {
-        const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> sv(stress.col(f).data(), 6, N);
-        field.von_mises_pa.resize(N);
-        for (fem::Index i = 0; i < N; ++i) field.von_mises_pa[i] = fem::von_mises(sv.col(i));
-      } else if (options.recover_stress) {
+      field.max_displacement_m = field.displacement_m.rowwise().norm().maxCoeff(&field.max_displacement_node);
+      if (options.recover_stress && !stress_from_patterns) {
         const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.col(f).data(), N, 3);
         field.von_mises_pa = fem::recover_nodal_stress(mesh, part.supported.material, ue).von_mises_pa;
       }
@@ -599,6 +607,7 @@ void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
   }
   part.Zp = solve_columns(*part.analysis, P);
   if (part.rigid) part.Zp += part.rigid->correction(part.Zp);
+  part.GtZp = part.G.transpose() * part.Zp;
   if (options.recover_stress) {
     auto stresses = [&](const Eigen::MatrixXd& Z) {
       Eigen::MatrixXd S(6 * N, Z.cols());
@@ -616,7 +625,7 @@ void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
 }
 
 PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
-                                               const std::vector<Eigen::VectorXd>& load_displacement,
+                                               const std::vector<Eigen::VectorXd>& interface_load_displacement,
                                                const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
   Stopwatch clock;
   const Pose pose = pose_of(frame);
@@ -729,7 +738,7 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
         const Matrix6d Fkl = part.F.block<6, 6>(6 * iface.local, 6 * Eigen::Index(l));
         A.block<6, 6>(ou + 6 * k, ol + 6 * part.interfaces[l]) = -Q * Fkl * Q.transpose();
       }
-      const Vector6d d = part.G.middleCols<6>(6 * iface.local).transpose() * load_displacement[size_t(iface.part)];
+      const Vector6d d = interface_load_displacement[size_t(iface.part)].segment<6>(6 * iface.local);
       rhs.segment<6>(ou + 6 * k) = Q * d;
     }
     // (b) lambda_k - (C^T mu)_k + (S u)_k = 0
@@ -1094,7 +1103,8 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
       im.stats.loads_seconds += clock.seconds();
       clock.restart();
       if (part.superposed) {
-        load_displacement[p] = part.Zp * Fl;  // Fl: the coefficients
+        load_displacement[p].resize(part.Zp.rows(), Fl.cols());
+        fem::blas_product(part.Zp, Fl, load_displacement[p]);  // Fl: the coefficients
       } else {
         load_displacement[p] = solve_columns(*part.analysis, Fl);
         if (part.rigid) load_displacement[p] += part.rigid->correction(load_displacement[p]);
@@ -1105,10 +1115,22 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
     im.stats.loads_seconds += clock.seconds();  // the rigid bodies' resultants (no parts: all of it)
     std::vector<PoseSolution> block_poses;
     std::vector<Impl::FieldInputs> inputs(count);
+    // d = G^T Z_f per part for the block (from the patterns: G^T Z_p c).
+    std::vector<Eigen::MatrixXd> interface_load_displacement(im.parts.size());
+    for (size_t p = 0; p < im.parts.size(); ++p) {
+      const Impl::PartData& part = *im.parts[p];
+      if (part.superposed) {
+        interface_load_displacement[p].resize(part.GtZp.rows(), Eigen::Index(count));
+        for (size_t f = 0; f < count; ++f)
+          interface_load_displacement[p].col(Eigen::Index(f)) = part.GtZp * coefficients[f][p];
+      } else {
+        interface_load_displacement[p].noalias() = part.G.transpose() * load_displacement[p];
+      }
+    }
     for (size_t f = 0; f < count; ++f) {
-      std::vector<Eigen::VectorXd> z(im.parts.size());
-      for (size_t p = 0; p < im.parts.size(); ++p) z[p] = load_displacement[p].col(Eigen::Index(f));
-      block_poses.push_back(im.solve_pose(frames[first + f], z, resultants[f], inputs[f]));
+      std::vector<Eigen::VectorXd> d(im.parts.size());
+      for (size_t p = 0; p < im.parts.size(); ++p) d[p] = interface_load_displacement[p].col(Eigen::Index(f));
+      block_poses.push_back(im.solve_pose(frames[first + f], d, resultants[f], inputs[f]));
       ++im.stats.poses;
     }
     std::vector<Eigen::MatrixXd> block_coefficients(im.parts.size());
