@@ -25,8 +25,9 @@
 //     output time's loads solved and recovered.
 // The support's six reactions are computed at every step from K u - f and
 // must vanish (the loads are self-equilibrated): above `reaction_tolerance`
-// of the link's total load (sum of the nodal force magnitudes) it is an
-// Error naming link and time.
+// of the link's total load (sum of the nodal force magnitudes; on the
+// superposition path its bound sum_k |c_k| sum_i |P_ik|, so no f = P c is
+// formed per step) it is an Error naming link and time.
 #include <functional>
 #include <optional>
 #include <string>
