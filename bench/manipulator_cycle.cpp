@@ -7,10 +7,13 @@
 //   e.g. build/bench/manipulator_cycle cases/lever_chain_manipulator/case.toml 8 4 3
 //
 // Each size runs in a child process so its peak memory (ru_maxrss) is its own.
+#include <dlfcn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,8 +23,31 @@
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/solver/dense_product.hpp"
 
 namespace {
+
+// Best of three C = A B on n x n matrices through the program's BLAS, GFLOP/s
+// (2 n^3 flops): the rate the factorizations are measured against.
+double dgemm_gflops(int n) {
+  const Eigen::MatrixXd a = Eigen::MatrixXd::Random(n, n), b = Eigen::MatrixXd::Random(n, n);
+  Eigen::MatrixXd c(n, n);
+  double best = 1e300;
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    const kinetofem::Stopwatch clock;
+    kinetofem::fem::blas_product(a, b, c);
+    best = std::min(best, clock.seconds());
+  }
+  return 2.0 * std::pow(double(n), 3) / best * 1e-9;
+}
+
+// OpenBLAS's kernel (its openblas_get_corename), or "unknown" for another BLAS.
+std::string blas_kernel() {
+  using CoreName = char* (*)();
+  const auto f = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+  return f ? std::string(f()) : std::string("unknown");
+}
 
 double peak_rss_gb() {
   rusage usage{};
@@ -29,7 +55,7 @@ double peak_rss_gb() {
   return double(usage.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss is in KiB on Linux
 }
 
-int run_one(const std::string& case_path, double size_mm) {
+int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s) {
   using namespace kinetofem::app;
   CaseFile base = CaseFile::load(case_path, manipulator_schema());
   std::string text = base.text();
@@ -68,6 +94,15 @@ int run_one(const std::string& case_path, double size_mm) {
   }
   std::printf("%7.2f %-7s meshing %.2f s, dynamics %.3f s, whole cycle %.2f s, peak memory %.2f GB\n", size_mm, "all",
               s.meshing_seconds, s.dynamics_seconds, s.total_seconds, peak_rss_gb());
+  // The limit: every part's factorization flops at the DGEMM rate.
+  double flops = 0.0, factorize = 0.0;
+  for (const auto& l : s.links) flops += l.factorization_flops, factorize += l.factorize_seconds;
+  const double limit = flops / (dgemm_gf_s * 1e9);
+  std::printf("%7.2f %-7s factorizations %.4g flops in %.2f s: %.1f GFLOP/s = %.0f %% of DGEMM %.1f GFLOP/s; limit %.2f s, "
+              "cycle / limit %.2f\n",
+              size_mm, "all", flops, factorize, flops / std::max(factorize, 1e-9) * 1e-9,
+              100.0 * flops / std::max(factorize, 1e-9) / (dgemm_gf_s * 1e9), dgemm_gf_s, limit,
+              s.total_seconds / std::max(limit, 1e-9));
   std::fflush(stdout);
   return 0;
 }
@@ -80,6 +115,8 @@ int main(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) sizes.push_back(std::atof(argv[i]));
   if (sizes.empty()) sizes = {8.0, 5.0};
   std::printf("# manipulator cycle benchmark: %s\n", case_path.c_str());
+  const double dgemm = dgemm_gflops(4000);
+  std::printf("# BLAS kernel %s, DGEMM (4000 x 4000) %.1f GFLOP/s\n", blas_kernel().c_str(), dgemm);
   std::printf("%7s %-7s %9s %8s %8s %8s %9s %10s %9s %10s %8s %8s %6s\n", "h_mm", "link", "DoFs", "asm_s", "anal_s",
               "fact_s", "solve_s", "s/step", "stress_s", "nnz(L)", "L_GB", "GF/s", "steps");
   std::fflush(stdout);
@@ -87,7 +124,7 @@ int main(int argc, char** argv) {
     const pid_t pid = fork();
     if (pid == 0) {
       try {
-        std::_Exit(run_one(case_path, size));
+        std::_Exit(run_one(case_path, size, dgemm));
       } catch (const std::exception& e) {
         std::printf("%7.2f failed: %s\n", size, e.what());
         std::fflush(stdout);

@@ -21,6 +21,7 @@
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/postproc/load_patterns.hpp"
 #include "kinetofem/postproc/results_file.hpp"
+#include "kinetofem/testing/manipulator_cases.hpp"
 
 namespace kinetofem::app {
 namespace {
@@ -28,9 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string coarse_case(const std::string& type, double stroke_deg) {
-  return "[case]\nname = \"m\"\ntype = \"manipulator\"\n[mechanism]\ntype = \"" + type +
-         "\"\n[motion]\nstroke_deg = " + std::to_string(stroke_deg) +
-         "\nduration_s = 1.5\noutput_times = 11\n[mesh]\nelement_size_mm = 20.0\n[assembly]\nenabled = false\n";
+  return testing::coarse_manipulator_case(type, stroke_deg, "[assembly]\nenabled = false\n");
 }
 
 fs::path run(const std::string& type, double stroke_deg, const std::string& dir, const std::vector<std::string>& set) {
