@@ -118,8 +118,8 @@ std::vector<KeySpec> motion_solver_keys() {
                   "solved once, every output time a combination; exact), step by step (one solve per output "
                   "time), or auto (superposition unless a part has a bearing-pressure pin)"},
           {.path = "output.field_every", .type = KeySpec::Type::Integer, .default_number = 1, .min = 0, .max = 1e9,
-           .doc = "full fields (displacement, von Mises) in the results file at every k-th output time (first "
-                  "included; 0: none). Envelopes, hot spots and histories cover every output time"},
+           .doc = "full fields (displacement, von Mises) in the results file at every k-th output time (the first "
+                  "and the last included; 0: none). Envelopes, hot spots and histories cover every output time"},
           {.path = "output.field_times_s", .type = KeySpec::Type::Array, .unit = "s",
            .doc = "full fields at these times instead (s, within the motion; each becomes an output time)"}};
 }
@@ -170,6 +170,7 @@ std::vector<bool> read_field_output_steps(const CaseFile& c, std::vector<double>
   if (every == 1) return {};  // all
   std::vector<bool> mask(times.size(), false);
   for (size_t k = 0; every > 0 && k < times.size(); k += size_t(every)) mask[k] = true;
+  if (every > 0) mask.back() = true;  // the end of the motion too
   return mask;
 }
 
