@@ -46,19 +46,22 @@ void check_support_reaction(LinkEnvelope& env, double relative, const LinkLoads&
          loads.body(), frame.t, relative);
 }
 
+// Node i's von Mises stress and deformation magnitude at `step` into the envelope.
+inline void fold_node(LinkEnvelope& env, Eigen::Index i, std::size_t step, double von_mises, double magnitude) {
+  if (von_mises > env.max_von_mises_pa[i]) {
+    env.max_von_mises_pa[i] = von_mises;
+    env.max_von_mises_step[i] = int(step);
+  }
+  if (magnitude > env.max_displacement_m[i]) {
+    env.max_displacement_m[i] = magnitude;
+    env.max_displacement_step[i] = int(step);
+  }
+}
+
 // One step's von Mises stress and deformation magnitude into the envelope.
 void fold_into_envelope(LinkEnvelope& env, std::size_t step, const Eigen::Ref<const Eigen::VectorXd>& von_mises,
                         const Eigen::Ref<const Eigen::VectorXd>& magnitude) {
-  for (Eigen::Index i = 0; i < von_mises.size(); ++i) {
-    if (von_mises[i] > env.max_von_mises_pa[i]) {
-      env.max_von_mises_pa[i] = von_mises[i];
-      env.max_von_mises_step[i] = int(step);
-    }
-    if (magnitude[i] > env.max_displacement_m[i]) {
-      env.max_displacement_m[i] = magnitude[i];
-      env.max_displacement_step[i] = int(step);
-    }
-  }
+  for (Eigen::Index i = 0; i < von_mises.size(); ++i) fold_node(env, i, step, von_mises[i], magnitude[i]);
 }
 
 std::vector<fem::Index> supported_nodes(const fem::FeModel& model) {
@@ -199,15 +202,7 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
       for (fem::Index i = 0; i < nodes; ++i) {
         von_mises[i] = fem::von_mises(s.col(i));
         magnitude[i] = e.col(i).norm();
-        if (!in_envelope) continue;
-        if (von_mises[i] > env.max_von_mises_pa[i]) {
-          env.max_von_mises_pa[i] = von_mises[i];
-          env.max_von_mises_step[i] = int(step);
-        }
-        if (magnitude[i] > env.max_displacement_m[i]) {
-          env.max_displacement_m[i] = magnitude[i];
-          env.max_displacement_step[i] = int(step);
-        }
+        if (in_envelope) fold_node(env, i, step, von_mises[i], magnitude[i]);
       }
       if (on_step && wants_callback(options, step)) {
         const fem::DisplacementField u = e.transpose();

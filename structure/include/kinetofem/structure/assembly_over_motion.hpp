@@ -4,7 +4,9 @@
 // at every output time and, when given, in the static pose study, with one
 // factorization per part for all of them. Quasi-static: the elastic
 // deflection does not feed back into the motion (the frames come from the
-// rigid-body dynamics). docs/elastic_assembly.md.
+// rigid-body dynamics). Parts' loads by unit-load superposition
+// (AssemblyOptions::superpose_loads) from 64 poses on; fewer poses are solved
+// one by one (cheaper there; exact either way). docs/elastic_assembly.md.
 //
 // Written into the results file (names: docs/results.md):
 //   body assembly.<b> per elastic part, series (one step per output time):
