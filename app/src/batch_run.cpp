@@ -20,6 +20,7 @@
 #include "kinetofem/app/batch.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/units.hpp"
 
 extern char** environ;
 
@@ -269,6 +270,8 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
       if (const auto s = read_run_summary(run_summary_path(dir, row.name))) {
         if (std::isfinite(s->max_von_mises_pa)) row.max_von_mises_pa = s->max_von_mises_pa;
         if (std::isfinite(s->max_displacement_m)) row.max_displacement_m = s->max_displacement_m;
+        for (const auto& [key, value] : s->extra)
+          if (key == "fatigue_min_life_h") row.min_fatigue_life_s = value * units::kHour;
         row.results_file = s->results_file.string();
         if (o.status == RunStatus::Skipped) row.wall_time_s = s->wall_time_s;
       }

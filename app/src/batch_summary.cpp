@@ -111,24 +111,27 @@ const char* status_name(RunStatus status) {
 
 std::string summary_csv(const std::vector<BatchRow>& rows) {
   std::string out =
-      "case,status,wall_time_s,max_von_mises_mpa,max_displacement_mm,results_file,error\n";
+      "case,status,wall_time_s,max_von_mises_mpa,max_displacement_mm,min_fatigue_life_h,results_file,error\n";
   for (const auto& r : rows)
-    out += fmt::format("{},{},{:.2f},{},{},{},{}\n", csv_field(r.name), status_name(r.status),
+    out += fmt::format("{},{},{:.2f},{},{},{},{},{}\n", csv_field(r.name), status_name(r.status),
                        r.wall_time_s, number_or_blank(r.max_von_mises_pa, kMpa, "{:.6g}"),
                        number_or_blank(r.max_displacement_m, kMm, "{:.6g}"),
+                       number_or_blank(r.min_fatigue_life_s, units::kHour, "{:.6g}"),
                        csv_field(r.results_file), csv_field(r.error));
   return out;
 }
 
 std::string summary_markdown(const std::vector<BatchRow>& rows) {
   std::string out =
-      "| case | status | wall time [s] | max von Mises [MPa] | max displacement [mm] | results | error |\n"
-      "|---|---|---:|---:|---:|---|---|\n";
+      "| case | status | wall time [s] | max von Mises [MPa] | max displacement [mm] | min fatigue life [h] | results "
+      "| error |\n"
+      "|---|---|---:|---:|---:|---:|---|---|\n";
   for (const auto& r : rows)
-    out += fmt::format("| {} | {} | {:.1f} | {} | {} | {} | {} |\n", md_field(r.name),
+    out += fmt::format("| {} | {} | {:.1f} | {} | {} | {} | {} | {} |\n", md_field(r.name),
                        status_name(r.status), r.wall_time_s,
                        number_or_blank(r.max_von_mises_pa, kMpa, "{:.3f}"),
-                       number_or_blank(r.max_displacement_m, kMm, "{:.5f}"), md_field(r.results_file),
+                       number_or_blank(r.max_displacement_m, kMm, "{:.5f}"),
+                       number_or_blank(r.min_fatigue_life_s, units::kHour, "{:.4g}"), md_field(r.results_file),
                        md_field(r.error));
   return out;
 }

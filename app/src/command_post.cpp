@@ -17,9 +17,11 @@
 #include "kinetofem/app/commands.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/postproc/csv_export.hpp"
+#include "kinetofem/postproc/fatigue_nodes.hpp"
 #include "kinetofem/postproc/hot_spots.hpp"
 #include "kinetofem/postproc/png_plots.hpp"
 #include "kinetofem/postproc/results_file.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
 #include "kinetofem/postproc/time_history.hpp"
 
 namespace kinetofem::app {
@@ -165,6 +167,24 @@ void print_summary(const post::ResultsFile& r, const std::vector<post::HotSpot>&
     fmt::print("    {:>2}  {:<8} {:>7} {:>9.1f} {:>9.1f} {:>9.1f}  {:<16} {:>10.3f}\n", i + 1, s.body, s.node,
                s.position_m.x() * 1e3, s.position_m.y() * 1e3, s.position_m.z() * 1e3, when(s.time_s),
                s.value * u.factor);
+  }
+}
+
+// The fatigue check's ten worst nodes over all bodies (damage per cycle, then
+// utilization), when the run had fatigue.enabled.
+void print_fatigue(const post::ResultsFile& r) {
+  if (!post::has_fatigue(r)) return;
+  const std::vector<post::FatigueNode> worst = post::worst_fatigue_nodes(r, 10);
+  fmt::print("  fatigue: the {} worst nodes (damage per work cycle, then utilization u; life infinite where every "
+             "range is below the cut-off limit):\n", worst.size());
+  fmt::print("    {:>2}  {:<8} {:>7} {:>9} {:>9} {:>9} {:>8} {:>12} {:>12} {:>12} {:>8} {:>12}\n", "#", "body", "node",
+             "x [mm]", "y [mm]", "z [mm]", "cat MPa", "D/cycle", "life cycles", "life [h]", "u", "range [MPa]");
+  for (size_t i = 0; i < worst.size(); ++i) {
+    const post::FatigueNode& n = worst[i];
+    fmt::print("    {:>2}  {:<8} {:>7} {:>9.1f} {:>9.1f} {:>9.1f} {:>8g} {:>12.4e} {:>12.4e} {:>12.4e} {:>8.4f} {:>12.4f}\n",
+               i + 1, n.body, n.node, n.position_m.x() * 1e3, n.position_m.y() * 1e3, n.position_m.z() * 1e3,
+               n.detail_category_pa * 1e-6, n.damage_per_cycle, n.life_cycles, n.life_h, n.utilization,
+               n.max_range_pa * 1e-6);
   }
 }
 
@@ -315,6 +335,7 @@ int run_post(const PostOptions& o) {
   const std::vector<post::HotSpot> spots =
       post::find_hot_spots(envelopes, {.count = o.hot_spots, .separation_m = o.separation_mm * 1e-3});
   print_summary(r, spots, envelopes.empty() ? std::string("Pa") : envelopes.front().units, o);
+  print_fatigue(r);
   if (history) print_history(*history);
 
   fs::path csv_dir = o.csv_dir, png_dir = o.png_dir;
@@ -363,6 +384,25 @@ int run_post(const PostOptions& o) {
       const post::StressPictureInfo info = post::write_stress_picture(r, p, so);
       written.push_back(fmt::format("{}  ({}, deformation x{:g})", p.string(), when(info.time_s), info.deformation_scale));
     }
+    if (post::has_fatigue(r))  // the fatigue fields on each part (static fields: the undeformed shape)
+      for (const char* field : {post::layout::kFatigueDamage, post::layout::kFatigueUtilization}) {
+        const std::vector<post::FatigueNode> worst = post::worst_fatigue_nodes(r, 1);
+        if (field == std::string(post::layout::kFatigueDamage) && (worst.empty() || worst.front().damage_per_cycle <= 0)) {
+          written.push_back(fmt::format("{}: not drawn, the damage is 0 at every node (every range below the cut-off "
+                                        "limit; see the utilization)", file_safe(field) + ".png"));
+          continue;
+        }
+        post::StressPictureOptions fo;
+        fo.caption = "over the work cycle (EN 1993-1-9)";
+        fo.field = field;
+        fo.displacement_field = "";  // drawn undeformed
+        fo.width_px = width_px;
+        fo.height_px = height_px;
+        const fs::path p = png_dir / (file_safe(field) + ".png");
+        const post::StressPictureInfo info = post::write_stress_picture(r, p, fo);
+        written.push_back(fmt::format("{}  (max {:.4g} on {}, node {})", p.string(), info.max_value, info.peak_body,
+                                      info.peak_node));
+      }
     bool has_loads = false;
     for (const auto& name : r.histories()) {
       const std::string units = r.read_history(name).units;

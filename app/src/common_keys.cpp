@@ -51,6 +51,10 @@ std::vector<KeySpec> solver_keys() {
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
        .doc = "memory allowed for a Cholesky factor; 0 = 80 % of physical memory. Above it: 'direct' stops with an "
               "error before the numeric factorization, 'auto' switches to 'iterative'"},
+      {.path = "solver.concurrent_parts", .type = Type::Integer,
+       .default_number = double(fem::StaticSolverOptions{}.concurrent_parts), .min = 0, .max = 1024,
+       .doc = "parts whose Cholesky factorizations run side by side, one BLAS thread each, when their predicted "
+              "factors fit max_factor_gb together (0 = one per hardware thread, 1 = one after the other)"},
       {.path = "solver.pcg_tolerance", .type = Type::Number, .default_number = amg.relative_tolerance, .min = 1e-14,
        .max = 1e-2, .doc = "iterative solver: relative tolerance of CG in the preconditioner's norm"},
       {.path = "solver.pcg_max_iterations", .type = Type::Integer, .default_number = double(amg.max_iterations),
@@ -70,6 +74,7 @@ fem::StaticSolverOptions read_solver_options(const CaseFile& c) {
                             : ordering == "metis_dof" ? fem::CholmodOptions::Ordering::Metis
                                                       : fem::CholmodOptions::Ordering::NodeGraphMetis;
   options.direct.max_factor_bytes = c.number("solver.max_factor_gb") * 1e9;
+  options.concurrent_parts = int(c.integer("solver.concurrent_parts"));
   options.iterative.relative_tolerance = c.number("solver.pcg_tolerance");
   options.iterative.max_iterations = int(c.integer("solver.pcg_max_iterations"));
   return options;

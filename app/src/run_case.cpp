@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <limits>
+
 #include "kinetofem/app/case_types.hpp"
 #include "kinetofem/app/fe_static_job.hpp"
 #include "kinetofem/app/linkage_job.hpp"
@@ -33,6 +36,25 @@ void add_assembly_results(RunSummary& s, const std::optional<structure::Assembly
   }
 }
 
+// The fatigue check's key results: the shortest life (h; inf where no range
+// reaches the cut-off) over the parts and per part, the largest utilization.
+void add_fatigue_results(RunSummary& s, const std::vector<pipeline::PartFatigue>& parts) {
+  if (parts.empty()) return;
+  double min_life_s = std::numeric_limits<double>::infinity(), max_utilization = 0.0, max_damage = 0.0;
+  for (const auto& p : parts) {
+    min_life_s = std::min(min_life_s, p.min_life_s);
+    max_utilization = std::max(max_utilization, p.max_utilization);
+    max_damage = std::max(max_damage, p.max_damage_per_cycle);
+  }
+  s.extra.push_back({"fatigue_min_life_h", min_life_s / units::kHour});
+  s.extra.push_back({"fatigue_max_utilization", max_utilization});
+  s.extra.push_back({"fatigue_max_damage_per_cycle", max_damage});
+  for (const auto& p : parts) {
+    s.extra.push_back({"fatigue_life_h_" + p.body, p.min_life_s / units::kHour});
+    s.extra.push_back({"fatigue_utilization_" + p.body, p.max_utilization});
+  }
+}
+
 RunSummary summary_of(const ManipulatorSummary& s) {
   RunSummary r{.type = "manipulator", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
                .max_displacement_m = s.max_displacement_m,
@@ -41,6 +63,7 @@ RunSummary summary_of(const ManipulatorSummary& s) {
                          {"max_drive_torque_nm", s.max_drive_torque_nm},
                          {"min_chain_tension_n", s.min_chain_tension_n}}};
   add_assembly_results(r, s.assembly);
+  add_fatigue_results(r, s.fatigue);
   return r;
 }
 
@@ -52,6 +75,7 @@ RunSummary summary_of(const LinkageRun& r) {
   if (!r.results.frames.empty() && !r.results.frames.front().chains.empty())
     s.extra.push_back({"min_chain_tension_n", r.min_chain_tension_n});
   add_assembly_results(s, r.assembly);
+  add_fatigue_results(s, r.fatigue);
   return s;
 }
 

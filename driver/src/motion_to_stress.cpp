@@ -54,6 +54,11 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     for (const auto& part : parts) check_part_against_model(part, run.model);
     return 0;
   });
+  if (c.fatigue)
+    in_stage(c, "a fatigue detail does not fit the parts", [&] {
+      check_fatigue_details(*c.fatigue, parts);
+      return 0;
+    });
 
   const mech::MultibodySystem system = in_stage(c, "the linkage is not valid", [&] { return mech::MultibodySystem(run.model); });
   log.info("dynamics: {} output times over {:.4g} s", c.times.size(), c.times.back() - c.times.front());
@@ -78,15 +83,32 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
   // One factorization per part for the whole motion, shared by the per-part
   // stress and the elastic assembly.
   std::vector<std::unique_ptr<SupportedPart>> factorized;
+  in_stage(c, "the parts cannot be factorized", [&] {
+    factorized = factorize_parts(parts, c.stress.solver, log, &run.factorization);
+    return 0;
+  });
+  // The stress at every output time, kept for the fatigue stage (when asked).
+  std::vector<PartStressHistory> histories(c.fatigue ? parts.size() : 0);
   in_stage(c, "the stress of the parts cannot be computed or written", [&] {
-    for (const auto& part : parts) {
-      factorized.push_back(std::make_unique<SupportedPart>(part, c.stress.solver, log));
-      run.parts.push_back(analyse_part_over_motion(part, run.model, run.motion.frames, run.static_pose, writer,
-                                                   c.stress, log, factorized.back().get()));
-      if (!c.assembly) factorized.back().reset();  // no second use: free the factor now
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      factorized[k]->analysis().factorize();  // done already when the parts went side by side
+      run.parts.push_back(analyse_part_over_motion(parts[k], run.model, run.motion.frames, run.static_pose, writer,
+                                                   c.stress, log, factorized[k].get(),
+                                                   c.fatigue ? &histories[k] : nullptr));
+      if (!c.assembly) factorized[k].reset();  // no second use: free the factor now
     }
     return 0;
   });
+  if (c.fatigue)
+    in_stage(c, "the fatigue check cannot be done or written", [&] {
+      log.info("fatigue: {} parts over {} output times (one work cycle)", parts.size(), run.motion.frames.size());
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        run.fatigue.push_back(assess_part_fatigue(parts[k], histories[k], *c.fatigue, log));
+        write_part_fatigue(writer.body(parts[k].body()), run.fatigue.back());
+        histories[k] = {};  // done with it: free the memory
+      }
+      return 0;
+    });
   in_stage(c, "the histories cannot be written", [&] {
     write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
     return 0;

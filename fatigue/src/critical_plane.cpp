@@ -170,7 +170,20 @@ NodeFatigue assess_node(const StressHistory& history, const SnCurve& curve,
     const auto steps = static_cast<std::size_t>(sigma_n.cols());
     Counted best;
     int best_plane = -1;
-    for (Eigen::Index k = 0; k < sigma_n.rows(); ++k) {
+    // Shortcut, the same result: a plane's largest counted range is its
+    // max - min, and mean stress treatment only lowers ranges; if the curve
+    // gives the largest max - min of all planes no damage, every plane has
+    // D = 0 and the tie rule picks the first plane of the largest range, so
+    // only that plane needs counting.
+    const Eigen::VectorXd spread = sigma_n.rowwise().maxCoeff() - sigma_n.rowwise().minCoeff();
+    Eigen::Index widest = 0;
+    const double widest_range = spread.maxCoeff(&widest);
+    const bool undamaged = std::isinf(curve.endurance(widest_range));
+    if (undamaged) {
+      best = count(std::span<const double>(sigma_n.row(widest).data(), steps), curve, options);
+      best_plane = static_cast<int>(widest);
+    }
+    for (Eigen::Index k = 0; !undamaged && k < sigma_n.rows(); ++k) {
       Counted c = count(std::span<const double>(sigma_n.row(k).data(), steps), curve, options);
       if (best_plane < 0 || better(c, best)) {
         best = std::move(c);

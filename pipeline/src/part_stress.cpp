@@ -40,7 +40,7 @@ SupportedPart::SupportedPart(const Part& part, const fem::StaticSolverOptions& s
 PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyModel& model,
                                      const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
                                      post::ResultsWriter& writer, const loads::LinkStressOptions& options,
-                                     const Log& log, const SupportedPart* factorized) {
+                                     const Log& log, const SupportedPart* factorized, PartStressHistory* history) {
   require(!motion.empty(), "{}: no output times to analyse", part.spec.label);
   std::unique_ptr<SupportedPart> own;
   if (!factorized) {
@@ -68,6 +68,15 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
           "{}: the field output mask has {} entries for {} output times", part.spec.label,
           options.callback_steps.size(), motion.size());
   if (!stress_options.callback_steps.empty() && static_pose) stress_options.callback_steps.push_back(true);
+  // The fatigue stage's history: step by step, every output time's stress
+  // goes through the callback (the mask then only limits what is written).
+  const bool keep_steps = history && !(options.load_path == loads::LoadPath::Superposition ||
+                                       (options.load_path == loads::LoadPath::Auto && link_loads.superposable()));
+  const auto written = [&](std::size_t step) { return options.callback_steps.empty() || options.callback_steps[step]; };
+  if (keep_steps) {
+    stress_options.callback_steps.clear();
+    history->step_stress_pa.resize(6 * supported.mesh.node_count(), Eigen::Index(motion.size()));
+  }
 
   post::BodyWriter& body = writer.add_body(part.body(), supported.mesh);
   body.begin_series({{"displacement", "m", 3, post::kVectorComponents}, {"von_mises", "Pa", 1, {}}});
@@ -77,7 +86,9 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.dofs = 3 * ps.nodes;
   const auto on_step = [&](std::size_t step, const fem::DisplacementField& u, const fem::NodalStress& s) {
     if (step < motion.size()) {
-      body.write_step(motion[step].t, {{"displacement", u}, {"von_mises", s.von_mises_pa}});
+      if (keep_steps)
+        history->step_stress_pa.col(Eigen::Index(step)) = Eigen::Map<const Eigen::VectorXd>(s.stress_pa.data(), s.stress_pa.size());
+      if (written(step)) body.write_step(motion[step].t, {{"displacement", u}, {"von_mises", s.von_mises_pa}});
       return;
     }
     body.write_static("static_displacement", "m", u, post::kVectorComponents);
@@ -115,6 +126,10 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.right_hand_sides = env.solved_right_hand_sides;
   ps.output_times = long(motion.size());
   ps.superposed = env.patterns.has_value();
+  if (env.patterns && history) {
+    history->pattern_stress_pa = env.patterns->stress_pa;
+    history->coefficients = env.patterns->coefficients.leftCols(Eigen::Index(motion.size()));
+  }
   if (env.patterns) write_load_patterns(body, *env.patterns, motion);
   ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
   ps.worst_support_reaction = env.worst_support_reaction;

@@ -449,7 +449,7 @@ void draw_colour_bar(cairo_t* cr, double bx, double by, double bw, double bh, do
   const int decimals = std::clamp(2 - int(std::floor(std::log10(vmax))), 2, 6);  // 3 significant digits below 1
   text(cr, bx + bw + 8, by + 0.5, fmt::format("{:.{}f}", vmax, decimals), font - 1, 0.0, 0.5, true);
   text(cr, bx + bw / 2, by - 24, heading, font, 0.5, 1.0, true);
-  text(cr, bx + bw / 2, by - 8, "[" + unit_label + "]", font, 0.5, 1.0);
+  if (!unit_label.empty()) text(cr, bx + bw / 2, by - 8, "[" + unit_label + "]", font, 0.5, 1.0);
 }
 
 double round_down_125(double x) {
@@ -466,6 +466,12 @@ double nearest_125(double x) {
 // Bodies of the elastic assembly ("assembly.<b>"): world-axes displacement, drawn by write_assembly_picture.
 constexpr std::string_view kAssemblyBodyPrefix = layout::kAssemblyBodyPrefix;
 bool is_assembly_body(const std::string& body) { return body.rfind(kAssemblyBodyPrefix, 0) == 0; }
+
+// A shown value: 2 decimals, or 3 significant digits for small ones (e.g. a
+// fatigue damage per cycle of 1e-5).
+std::string value_text(double v) {
+  return v == 0.0 || std::abs(v) >= 0.01 ? fmt::format("{:.2f}", v) : fmt::format("{:.3e}", v);
+}
 
 struct BodyView {
   std::string name;
@@ -544,16 +550,18 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
 
   Canvas canvas(options.width_px, options.height_px);
   cairo_t* cr = canvas.cr();
-  const DisplayUnit du = display_unit(units);
+  DisplayUnit du = display_unit(units);
+  if (du.label == layout::kDimensionless) du.label = "";  // a ratio: no unit after the numbers
   const std::string name = case_name(results, options);
-  const std::string when = std::isnan(critical_time) ? std::string("static load case")
-                                                     : fmt::format("t = {:.3f} s (time of the peak)", critical_time);
+  const std::string when = !options.caption.empty()     ? options.caption
+                           : std::isnan(critical_time) ? std::string("static load case")
+                                                       : fmt::format("t = {:.3f} s (time of the peak)", critical_time);
   const std::string field_name = options.field == "von_mises" ? std::string("von Mises stress") : options.field;
   title(cr, canvas,
-        fmt::format("{}: {}{} {}, deformation scaled x{:g}", name, field_name,
-                    std::isnan(critical_time) ? "," : " at", when, scale),
-        fmt::format("{}; each body in its own frame; peak {:.2f} {} on {}, node {}", view.description(),
-                    shown_max * du.factor, du.label, views[peak_env].name, views[peak_env].peak_node));
+        fmt::format("{}: {}{} {}{}", name, field_name, std::isnan(critical_time) || !options.caption.empty() ? "," : " at",
+                    when, max_u_m > 0 ? fmt::format(", deformation scaled x{:g}", scale) : std::string(", undeformed")),
+        fmt::format("{}; each body in its own frame; peak {} {} on {}, node {}", view.description(),
+                    value_text(shown_max * du.factor), du.label, views[peak_env].name, views[peak_env].peak_node));
 
   // Layout: panels side by side or stacked, whichever draws larger; one mm scale for all.
   const double font = 13, top = 80, bottom_margin = 60, left_margin = 80, bar_width = 150, gap = 40;
@@ -582,7 +590,7 @@ StressPictureInfo write_stress_picture(const ResultsFile& results, const std::fi
     else ax.left += (area_w - w) / 2;
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(cr, ax.left, ax.top - 8,
-         fmt::format("{}: max {:.2f} {}", v.name, v.peak * du.factor, du.label), font + 1,
+         fmt::format("{}: max {} {}", v.name, value_text(v.peak * du.factor), du.label), font + 1,
          0.0, 1.0, true);
     draw_axes(cr, ax, "x [mm]", "y [mm]", font - 1, true, std::max(3, int(w / 70)), std::max(3, int(h / 60)));
 

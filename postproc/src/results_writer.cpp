@@ -589,6 +589,12 @@ BodyWriter& ResultsWriter::add_body(const std::string& name, const fem::Mesh& me
   return *bodies_.back();
 }
 
+BodyWriter& ResultsWriter::body(const std::string& name) {
+  for (const auto& body : bodies_)
+    if (body->name() == name) return *body;
+  fail("results file '{}' has no body '{}'", file_->final_h5.string(), name);
+}
+
 void ResultsWriter::set_mechanism_time(const std::vector<double>& time_s) {
   detail::FileState& f = *file_;
   f.check_writable();

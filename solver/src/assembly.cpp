@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "element_kernels.hpp"
+#include "sparse_assembly.hpp"
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::fem {
@@ -142,6 +143,11 @@ inline void atomic_add(double& target, double value) {
 
 }  // namespace
 
+void detail::build_upper_pattern(const Mesh& mesh, const DofMap& dofs,
+                                 SymmetricUpperMatrix& matrix) {
+  build_pattern(mesh, dofs, matrix);
+}
+
 void check_element_jacobians(const Mesh& mesh) {
   FirstFailure failure;
   Index first = 0;
@@ -181,9 +187,6 @@ AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial&
   AssembledStiffness out;
   build_pattern(mesh, dofs, out.free_free);
   out.prescribed_coupling_force = Eigen::VectorXd::Zero(dofs.free_count());
-  const auto* col_start = out.free_free.outerIndexPtr();
-  const auto* rows = out.free_free.innerIndexPtr();
-  double* values = out.free_free.valuePtr();
   const Eigen::VectorXd& prescribed = dofs.prescribed_values();
   double lambda, mu;
   detail::lame(material.youngs_modulus_pa, material.poisson_ratio, lambda, mu);
@@ -216,18 +219,7 @@ AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial&
               if (eq[size_t(3 * a + c)] < 0 && prescribed[3 * nodes[size_t(a)] + c] != 0.0)
                 has_prescribed_value = true;
             }
-          for (int q = 0; q < 3 * NPE; ++q) {
-            const Index col = eq[size_t(q)];
-            if (col < 0) continue;
-            const Index* begin = rows + col_start[col];
-            const Index* end = rows + col_start[col + 1];
-            for (int p = 0; p < 3 * NPE; ++p) {
-              const Index row = eq[size_t(p)];
-              if (row < 0 || row > col) continue;
-              const Index* hit = std::lower_bound(begin, end, row);
-              atomic_add(values[hit - rows], Ke(p, q));
-            }
-          }
+          detail::scatter_upper<3 * NPE>(eq, Ke, out.free_free);
           if (has_prescribed_value) {
             for (int p = 0; p < 3 * NPE; ++p) {
               if (eq[size_t(p)] < 0) continue;

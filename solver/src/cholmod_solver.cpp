@@ -46,6 +46,10 @@ const char* ordering_name(int ordering) {
 
 }  // namespace
 
+double factor_memory_limit_bytes(const CholmodOptions& options) {
+  return options.max_factor_bytes > 0 ? options.max_factor_bytes : 0.8 * physical_memory_bytes();
+}
+
 struct CholmodSolver::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
@@ -178,8 +182,7 @@ void CholmodSolver::analyze_with(const SymmetricUpperMatrix& matrix, const Given
   stats_.factor_bytes = values * sizeof(double);
   stats_.ordering_seconds = given ? given->seconds : 0.0;
   stats_.analyze_seconds = clock.seconds() + stats_.ordering_seconds;
-  const double limit =
-      options_.max_factor_bytes > 0 ? options_.max_factor_bytes : 0.8 * physical_memory_bytes();
+  const double limit = factor_memory_limit_bytes(options_);
   if (stats_.factor_bytes > limit)
     // {:.3g}: a small limit (0.001 GB) must not print as "0.0 GB".
     fail("the Cholesky factor of this {}-equation system needs {:.3g} GB (symbolic analysis, "

@@ -63,12 +63,17 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
     amg_->setup(stiffness_.free_free, mesh.nodes, dofs_);
     return;
   }
-  factorize_direct();
+  if (!options.defer_factorization) factorize_direct();
+}
+
+void LinearStaticAnalysis::factorize() {
+  if (!is_factorized()) factorize_direct();
 }
 
 void LinearStaticAnalysis::factorize_direct() {
   try {
     solver_.factorize(stiffness_.free_free);
+    factorized_ = true;
   } catch (const NotPositiveDefinite& error) {
     if (error.equation() < 0) throw;
     // Name the node and direction of the equation where the factorization failed.
@@ -127,6 +132,7 @@ std::vector<DisplacementField> LinearStaticAnalysis::solve_forces(
     if (eq >= 0) rhs.row(eq) = external_forces.row(d);
   }
   rhs.colwise() -= stiffness_.prescribed_coupling_force;
+  require(is_factorized(), "the stiffness is analysed but not factorized: call factorize() before solving");
   const Eigen::MatrixXd x = amg_ ? amg_->solve(rhs) : solver_.solve(rhs);
   std::vector<DisplacementField> out;
   out.reserve(size_t(cases));

@@ -71,7 +71,10 @@ TEST(ManipulatorJob, FactorAboveTheLimitSwitchesToTheIterativeSolverWithTheSameR
   // for the iterative path) on each link's peak von Mises and deformation.
   // The elastic assembly is off: this is the per-link iterative path (the
   // assembly's interface solves on AMG-PCG would only add run time).
-  const std::string base = coarse_case("lever_chain", 40.0) + "[assembly]\nenabled = false\n";
+  // 30 mm elements (about 7 k DoFs a link): AMG-PCG's ~100 iterations a
+  // right-hand side on 20 mm meshes made this the suite's longest test.
+  const std::string base =
+      testing::coarse_manipulator_case("lever_chain", 40.0, "[assembly]\nenabled = false\n", 30.0);
   const CaseFile direct = CaseFile::parse(base + "[solver]\nmethod = \"direct\"\n", "case.toml", manipulator_schema());
   const CaseFile automatic =
       CaseFile::parse(base + "[solver]\nmax_factor_gb = 1e-6\n", "case.toml", manipulator_schema());

@@ -74,6 +74,9 @@ struct BatchRow {
   RunStatus status = RunStatus::Failed;
   double wall_time_s = 0.0;  // this batch's run; for a skipped run, the run that made the results
   std::optional<double> max_von_mises_pa, max_displacement_m;
+  // The shortest fatigue life over the parts (run summary key
+  // fatigue_min_life_h; s, may be infinite), when the case ran the fatigue check.
+  std::optional<double> min_fatigue_life_s;
   std::string results_file;
   std::string error;  // the run's error line (failed)
 };

@@ -31,6 +31,7 @@
 #include "kinetofem/app/jobs.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/structure/assembly_over_motion.hpp"
 
@@ -52,6 +53,7 @@ struct LinkageRun {
   double max_abs_drive_effort = 0.0;                           // over all drives (N m or N)
   std::vector<pipeline::PartSummary> parts;                    // one per [[part]]: stress over the motion
   std::optional<structure::AssemblySummary> assembly;          // assembly.enabled
+  std::vector<pipeline::PartFatigue> fatigue;                  // fatigue.enabled: one per [[part]]
 };
 
 LinkageRun run_linkage(const CaseFile& case_file, const RunOptions& options);

@@ -13,6 +13,7 @@ inline constexpr double kGpa = 1e9;                              // GPa -> Pa
 inline constexpr double kDeg = std::numbers::pi / 180.0;         // deg -> rad
 inline constexpr double kRpm = 2.0 * std::numbers::pi / 60.0;    // rpm -> rad/s
 inline constexpr double kGramsPerCm3 = 1e3;                      // g/cm^3 -> kg/m^3
+inline constexpr double kHour = 3600.0;                          // h -> s
 
 // Standard gravity (ISO 80000-3), m/s^2: the one default for every case type.
 inline constexpr double kStandardGravity = 9.80665;

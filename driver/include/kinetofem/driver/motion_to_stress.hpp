@@ -14,6 +14,8 @@
 //     5. solve_static_pose             the pose study at rest (when asked)
 //     6. analyse_part_over_motion      per part: loads, one factorization,
 //                                      block solves, stress, envelopes
+//        assess_part_fatigue           per part (when asked): rainflow, Miner,
+//                                      life per node over the work cycle
 //     7. write_mechanism_histories     bodies, joints, drives, chains, points
 //     8. analyse_assembly_over_motion  the linkage as one elastic structure
 //                                      (when asked): total deformation, the
@@ -35,6 +37,8 @@
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/pipeline/histories.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
+#include "kinetofem/pipeline/part_factorization.hpp"
+#include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/postproc/provenance.hpp"
@@ -63,6 +67,9 @@ struct MotionStressCase {
   // The elastic assembly (step 8); empty: not run. Its chains' EA, drives'
   // stiffness and points (e.g. the gripper point H with its face set).
   std::optional<structure::AssemblyOptions> assembly;
+  // The fatigue check of every part over the work cycle (after step 6);
+  // empty: not run.
+  std::optional<pipeline::FatigueSettings> fatigue;
   std::filesystem::path results_file;        // <dir>/<name>.h5 (+ .xdmf)
   post::Provenance provenance;
 };
@@ -73,6 +80,8 @@ struct MotionStressRun {
   std::optional<mech::Frame> static_pose;
   std::vector<PartSummary> parts;
   std::optional<structure::AssemblySummary> assembly;
+  std::vector<pipeline::PartFatigue> fatigue;  // per part, when c.fatigue
+  pipeline::PartFactorizationReport factorization;  // side by side or one after the other, and why
   std::filesystem::path results_file;
   double meshing_seconds = 0.0, dynamics_seconds = 0.0;
 };

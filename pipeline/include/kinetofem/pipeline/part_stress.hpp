@@ -20,6 +20,7 @@
 #include "kinetofem/loads/link_stress_history.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/pipeline/part_stress_history.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::pipeline {
@@ -68,9 +69,13 @@ class SupportedPart {
 // part's SupportedPart made before, is used). Writes the part's body
 // into `writer`; prints the peak line. Throws Error naming the part and time
 // when the loads are out of equilibrium or the support carries load.
+// `history` (optional): filled with the stress at every output time (the
+// superposition's patterns and coefficients, else every step's stress) for
+// the fatigue stage (part_fatigue.hpp).
 PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyModel& model,
                                      const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
                                      post::ResultsWriter& writer, const loads::LinkStressOptions& options,
-                                     const Log& log, const SupportedPart* factorized = nullptr);
+                                     const Log& log, const SupportedPart* factorized = nullptr,
+                                     PartStressHistory* history = nullptr);
 
 }  // namespace kinetofem::pipeline

@@ -71,6 +71,9 @@ struct StressPictureOptions : PictureOptions {
   double deformation_scale = 0.0;    // 0: automatic (a "nice" 1/2/5 x 10^k factor)
   double oblique_depth = kObliqueDepth;
   double oblique_angle_deg = kObliqueAngleDeg;
+  // What the field is of, in the title, instead of "at t = ..." / "static
+  // load case" (e.g. "over the work cycle" for the fatigue fields).
+  std::string caption;
 };
 
 struct StressPictureInfo {

@@ -85,6 +85,16 @@ inline constexpr const char* kAssemblyBodyPrefix = "assembly.";
 inline constexpr const char* kAssemblyPointPrefix = "assembly.point.";      // + <P>.displacement, ...
 inline constexpr const char* kAssemblyMaxDisplacement = "assembly.max_displacement";
 
+// The fatigue check (pipeline/part_fatigue.hpp): static nodal fields of each
+// part's body (docs/results.md).
+inline constexpr const char* kFatigueDamage = "fatigue_damage_per_cycle";     // 1
+inline constexpr const char* kFatigueLifeCycles = "fatigue_life_cycles";      // cycles, inf: no damage
+inline constexpr const char* kFatigueLifeHours = "fatigue_life_h";            // h (the file's edge unit)
+inline constexpr const char* kFatigueUtilization = "fatigue_utilization";     // 1
+inline constexpr const char* kFatigueDetailCategory = "fatigue_detail_category";  // Pa
+inline constexpr const char* kFatigueMaxRange = "fatigue_max_range";          // Pa
+inline constexpr const char* kFatiguePlaneNormal = "fatigue_plane_normal";    // 1, 3 components
+
 // "block_<i>", the group of element block i (blocks keep their order).
 std::string block_name(size_t index);
 }  // namespace layout

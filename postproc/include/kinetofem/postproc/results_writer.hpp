@@ -151,6 +151,9 @@ class ResultsWriter {
 
   // Writes the body's mesh (validated first) and returns its writer.
   BodyWriter& add_body(const std::string& name, const fem::Mesh& mesh);
+  // The writer of a body added before (e.g. to add a later stage's fields);
+  // Error naming the body if there is none.
+  BodyWriter& body(const std::string& name);
 
   // Time histories of the mechanism: the time grid (s) first, then any number
   // of quantities, each T_m x c, at /mechanism/<name>.

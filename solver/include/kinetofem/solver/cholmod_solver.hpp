@@ -65,6 +65,10 @@ struct CholmodOptions {
   double max_relative_residual = 1e-8;      // above: the solve is an error
 };
 
+// The memory a numeric factor may take under `options`, bytes: max_factor_bytes,
+// or 80 % of the machine's physical memory when that is 0.
+double factor_memory_limit_bytes(const CholmodOptions& options);
+
 struct CholmodStatistics {
   std::int64_t equations = 0;
   std::int64_t matrix_nonzeros = 0;       // nnz of the stored upper triangle

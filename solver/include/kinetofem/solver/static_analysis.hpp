@@ -42,6 +42,13 @@ struct StaticSolverOptions {
   LinearSolverMethod method = LinearSolverMethod::Auto;
   CholmodOptions direct;  // max_factor_bytes is also the limit Auto decides by
   AmgOptions iterative;
+  // Direct path: stop after the symbolic analysis; the numeric factorization
+  // is LinearStaticAnalysis::factorize(), e.g. for several parts at once
+  // (pipeline::factorize_parts) once their predicted factors are known.
+  bool defer_factorization = false;
+  // pipeline::factorize_parts: at most this many parts factorized side by side,
+  // one BLAS thread each (0: one per hardware thread; 1: one after the other).
+  int concurrent_parts = 0;
 };
 
 class LinearStaticAnalysis {
@@ -51,7 +58,15 @@ class LinearStaticAnalysis {
   // Solver chosen by options.method.
   LinearStaticAnalysis(const FeModel& model, const Log& log, const StaticSolverOptions& options);
 
-  // Displacement (N x 3, m) for each load case, in the order given.
+  // The numeric factorization deferred by StaticSolverOptions::defer_factorization;
+  // a no-op when it is done or the iterative path was taken. Safe to call for
+  // different analyses from different threads at once (each has its own CHOLMOD
+  // workspace); BLAS threads are the caller's choice (blas_threads.hpp).
+  void factorize();
+  bool is_factorized() const { return amg_ != nullptr || factorized_; }
+
+  // Displacement (N x 3, m) for each load case, in the order given (factorize() first
+  // when it was deferred).
   std::vector<DisplacementField> solve(const std::vector<LoadCase>& load_cases);
   // Same, for external force vectors over all DoFs (one column per case, N).
   std::vector<DisplacementField> solve_forces(const Eigen::MatrixXd& external_forces);
@@ -88,6 +103,7 @@ class LinearStaticAnalysis {
   CholmodSolver solver_;
   std::unique_ptr<AmgSolver> amg_;  // set when the iterative path is taken
   StaticTimings timings_;
+  bool factorized_ = false;
 
   void factorize_direct();
 };

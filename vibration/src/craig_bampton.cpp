@@ -1,0 +1,491 @@
+#include "kinetofem/vibration/craig_bampton.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <numeric>
+#include <numbers>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <fmt/format.h>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/solver/assembly.hpp"
+#include "kinetofem/solver/cholmod_solver.hpp"
+#include "kinetofem/solver/couplings.hpp"
+#include "kinetofem/solver/dof_map.hpp"
+#include "kinetofem/solver/mass_matrix.hpp"
+#include "kinetofem/solver/rigid_body.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
+
+namespace kinetofem::vibration {
+
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Rows of the free equations of a 3N x k matrix.
+MatrixXd restrict_rows(const MatrixXd& full, const fem::DofMap& dofs) {
+  MatrixXd out = MatrixXd::Zero(dofs.free_count(), full.cols());
+  for (Index d = 0; d < full.rows(); ++d)
+    if (const Index eq = dofs.equation(d); eq >= 0) out.row(eq) = full.row(d);
+  return out;
+}
+
+// K with the equations `removed` deleted (upper triangle), and the map
+// equation -> reduced equation (-1: removed).
+fem::SymmetricUpperMatrix remove_equations(const fem::SymmetricUpperMatrix& K,
+                                           const std::vector<Index>& removed,
+                                           std::vector<Index>& map) {
+  map.assign(size_t(K.rows()), 0);
+  for (Index r : removed) map[size_t(r)] = -1;
+  Index next = 0;
+  for (auto& m : map) m = (m < 0) ? -1 : next++;
+  std::vector<Eigen::Triplet<double, std::int64_t>> entries;
+  entries.reserve(size_t(K.nonZeros()));
+  for (Index c = 0; c < K.outerSize(); ++c)
+    for (fem::SymmetricUpperMatrix::InnerIterator it(K, c); it; ++it) {
+      const Index i = map[size_t(it.row())], j = map[size_t(c)];
+      if (i >= 0 && j >= 0) entries.emplace_back(i, j, it.value());
+    }
+  fem::SymmetricUpperMatrix out(next, next);
+  out.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+// K_s^-1 B over the free equations of the part's DofMap (n x k -> n x k,
+// zero at the 3-2-1 DoFs of a free part).
+using StaticSolve = std::function<MatrixXd(const MatrixXd&)>;
+
+// The part's own factorization of K_s (K less the 3-2-1 equations).
+class OwnFactor {
+ public:
+  OwnFactor(const fem::SymmetricUpperMatrix& K, const std::vector<Index>& support_equations,
+            const std::string& label)
+      : n_(K.rows()) {
+    if (support_equations.empty()) {
+      Ks_ = K;
+      map_.resize(size_t(n_));
+      std::iota(map_.begin(), map_.end(), Index(0));
+    } else {
+      Ks_ = remove_equations(K, support_equations, map_);
+    }
+    try {
+      factor_.analyze(Ks_);
+      factor_.factorize(Ks_);
+    } catch (const fem::NotPositiveDefinite& e) {
+      fail("Craig-Bampton reduction of '{}': the part's stiffness is singular with its supports "
+           "(a part held in some directions only is not supported; give all supports or none): {}",
+           label, e.what());
+    }
+  }
+  MatrixXd solve(const MatrixXd& B) {
+    MatrixXd Bs(Ks_.rows(), B.cols());
+    for (Index i = 0; i < n_; ++i)
+      if (map_[size_t(i)] >= 0) Bs.row(map_[size_t(i)]) = B.row(i);
+    const MatrixXd Xs = factor_.solve(Bs);
+    MatrixXd X = MatrixXd::Zero(n_, B.cols());
+    for (Index i = 0; i < n_; ++i)
+      if (map_[size_t(i)] >= 0) X.row(i) = Xs.row(map_[size_t(i)]);
+    return X;
+  }
+  double factor_nonzeros() const { return factor_.statistics().factor_nonzeros; }
+
+ private:
+  Index n_;
+  fem::SymmetricUpperMatrix Ks_;
+  std::vector<Index> map_;
+  fem::CholmodSolver factor_;
+};
+
+// The small matrix S and the two operators built on K_s (header).
+class PartSolver {
+ public:
+  PartSolver(StaticSolve static_solve, const MatrixXd& G, const MatrixXd& R,
+             const std::string& label)
+      : static_solve_(std::move(static_solve)), G_(G), R_(R), label_(label) {
+    ZG_ = solve(G_);
+    const Index nb = G_.cols(), r = R_.cols();
+    MatrixXd S = MatrixXd::Zero(nb + r, nb + r);
+    S.topLeftCorner(nb, nb) = G_.transpose() * ZG_;
+    S.topLeftCorner(nb, nb) = 0.5 * (S.topLeftCorner(nb, nb) + S.topLeftCorner(nb, nb).transpose()).eval();
+    if (r > 0) {
+      const MatrixXd H = G_.transpose() * R_;
+      S.topRightCorner(nb, r) = H;
+      S.bottomLeftCorner(r, nb) = H.transpose();
+    }
+    // Diagonal scaling: boundary rows by 1/sqrt(F_ii), rigid rows by the
+    // scaled H's column norms, so the rank test is unit-free.
+    // A coordinate on a 3-2-1 support DoF has F_ii = 0 (its motion is
+    // rigid-body only, carried by H): the mean flexibility scales it.
+    scale_ = VectorXd::Ones(nb + r);
+    const double mean_flexibility = nb > 0 ? S.diagonal().head(nb).mean() : 1.0;
+    for (Index i = 0; i < nb; ++i) {
+      require(G_.col(i).norm() > 0, "Craig-Bampton reduction of '{}': boundary coordinate {} "
+              "is zero (an interface on prescribed DoFs only)", label, i);
+      require(mean_flexibility > 0, "Craig-Bampton reduction of '{}': the interfaces have no "
+              "flexibility", label);
+      scale_[i] = 1.0 / std::sqrt(S(i, i) > 1e-12 * mean_flexibility ? S(i, i) : mean_flexibility);
+    }
+    for (Index j = 0; j < r; ++j) {
+      const double norm = (scale_.head(nb).asDiagonal() * S.col(nb + j).head(nb)).norm();
+      require(norm > 0, "Craig-Bampton reduction of '{}': the interfaces do not hold the free "
+              "part's rigid-body motion {}", label, j);
+      scale_[nb + j] = 1.0 / norm;
+    }
+    small_.setThreshold(1e-10);
+    small_.compute(scale_.asDiagonal() * S * scale_.asDiagonal());
+    require(small_.rank() == nb + r,
+            "Craig-Bampton reduction of '{}': the interfaces' {} boundary coordinates do not hold "
+            "the part's {} rigid-body modes, or depend on each other (rank {} of {})",
+            label, nb, r, small_.rank(), nb + r);
+  }
+
+  // K_s^-1 B (zero at the 3-2-1 DoFs).
+  MatrixXd solve(const MatrixXd& B) {
+    solves_ += B.cols();
+    return static_solve_(B);
+  }
+  // S^-1 rhs.
+  MatrixXd solve_small(const MatrixXd& rhs) const {
+    return scale_.asDiagonal() * small_.solve(scale_.asDiagonal() * rhs);
+  }
+  MatrixXd constraint_modes() const {
+    const Index nb = G_.cols(), r = R_.cols();
+    MatrixXd rhs = MatrixXd::Zero(nb + r, nb);
+    rhs.topRows(nb).setIdentity();
+    const MatrixXd LA = solve_small(rhs);
+    MatrixXd Psi = ZG_ * LA.topRows(nb);
+    if (r > 0) Psi += R_ * LA.bottomRows(r);
+    return Psi;
+  }
+  // Y = K_0^+ B: K y = b + G mu, G^T y = 0 per column (header).
+  MatrixXd fixed_interface_inverse(const MatrixXd& B) {
+    const Index nb = G_.cols(), r = R_.cols();
+    const MatrixXd ZB = solve(B);
+    MatrixXd rhs(nb + r, B.cols());
+    rhs.topRows(nb) = -G_.transpose() * ZB;
+    if (r > 0) rhs.bottomRows(r) = -R_.transpose() * B;
+    const MatrixXd mu_alpha = solve_small(rhs);
+    MatrixXd Y = ZB + ZG_ * mu_alpha.topRows(nb);
+    if (r > 0) Y += R_ * mu_alpha.bottomRows(r);
+    return Y;
+  }
+  long long solves() const { return solves_; }
+
+ private:
+  StaticSolve static_solve_;
+  const MatrixXd& G_;
+  const MatrixXd& R_;
+  std::string label_;
+  MatrixXd ZG_;
+  VectorXd scale_;
+  Eigen::FullPivLU<MatrixXd> small_;
+  long long solves_ = 0;
+};
+
+}  // namespace
+
+PartInterface coupling_interface(const fem::Mesh& mesh, const std::string& face_set,
+                                 const Eigen::Vector3d& reference_point_m, std::string name) {
+  const fem::DistributingCoupling coupling(mesh, face_set);
+  PartInterface out{std::move(name), MatrixXd::Zero(3 * mesh.node_count(), 6)};
+  for (int k = 0; k < 6; ++k) {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+    (k < 3 ? force : moment)[k % 3] = 1.0;
+    coupling.add(force, moment, reference_point_m, out.columns.col(k));
+  }
+  return out;
+}
+
+PartInterface nodal_interface(const fem::Mesh& mesh, const std::vector<fem::Index>& nodes,
+                              std::string name) {
+  PartInterface out{std::move(name), MatrixXd::Zero(3 * mesh.node_count(), 3 * Index(nodes.size()))};
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    require(nodes[k] >= 0 && nodes[k] < mesh.node_count(),
+            "interface '{}': node {} is not in the mesh ({} nodes)", out.name, nodes[k],
+            mesh.node_count());
+    for (int c = 0; c < 3; ++c) out.columns(3 * nodes[k] + c, 3 * Index(k) + c) = 1.0;
+  }
+  return out;
+}
+
+namespace {
+
+// The reduction on a part model with the DoF map `dofs` (its supports; a
+// free body: none), solving with `supported` when given (a LinearStaticAnalysis
+// of the free part with a 3-2-1 support), else with its own factorization.
+CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterface>& interfaces,
+                         const CraigBamptonOptions& options, const Log* log,
+                         fem::LinearStaticAnalysis* supported) {
+  const Stopwatch clock;
+  const std::string& label = options.eigen.label;
+  require(options.highest_frequency_of_interest_hz > 0 &&
+              std::isfinite(options.highest_frequency_of_interest_hz),
+          "Craig-Bampton reduction of '{}': highest frequency of interest {} Hz must be positive",
+          label, options.highest_frequency_of_interest_hz);
+  require(options.cutoff_factor >= 1 && std::isfinite(options.cutoff_factor),
+          "Craig-Bampton reduction of '{}': cutoff factor {} must be at least 1", label,
+          options.cutoff_factor);
+  require(options.first_batch >= 1 && options.max_modes >= options.first_batch,
+          "Craig-Bampton reduction of '{}': first batch {} and max modes {} must satisfy 1 <= "
+          "first batch <= max modes",
+          label, options.first_batch, options.max_modes);
+  require(!interfaces.empty(), "Craig-Bampton reduction of '{}': no interface given", label);
+  const fem::Mesh& mesh = part.mesh;
+
+  CraigBamptonModel out;
+  out.label = label;
+  const fem::DofMap dofs(mesh.node_count(), part.supports);
+  const Index n = dofs.free_count();
+  // The 3-2-1 support of a free part: its own, or the analysis's.
+  const std::vector<fem::DisplacementSupport> determinate =
+      supported ? supported->model().supports
+                : (part.supports.empty() ? fem::three_two_one_support(mesh, [&] {
+                    std::vector<fem::Index> all(size_t(mesh.node_count()));
+                    std::iota(all.begin(), all.end(), fem::Index(0));
+                    return all;
+                  }())
+                                         : std::vector<fem::DisplacementSupport>{});
+  out.free_dofs = n;
+  const fem::SymmetricUpperMatrix K = fem::assemble_stiffness(mesh, part.material, dofs).free_free;
+  const fem::SymmetricUpperMatrix M = fem::assemble_mass(mesh, part.material, dofs);
+  fem::check_mass_positive(M, label);
+
+  // Boundary coordinates.
+  Index nb = 0;
+  for (const auto& itf : interfaces) {
+    require(itf.columns.rows() == 3 * mesh.node_count(),
+            "Craig-Bampton reduction of '{}': interface '{}' has {} rows, the mesh {} DoFs", label,
+            itf.name, itf.columns.rows(), 3 * mesh.node_count());
+    out.interface_names.push_back(itf.name);
+    out.interface_offset.push_back(nb);
+    nb += itf.columns.cols();
+  }
+  out.interface_offset.push_back(nb);
+  out.boundary_count = nb;
+  MatrixXd G(n, nb);
+  for (size_t k = 0; k < interfaces.size(); ++k)
+    G.middleCols(out.interface_offset[k], interfaces[k].columns.cols()) =
+        restrict_rows(interfaces[k].columns, dofs);
+
+  // A free body: 3-2-1 support and its rigid-body modes about the centroid.
+  MatrixXd R(n, 0);
+  std::vector<Index> support_equations;
+  out.free_body = part.supports.empty();
+  if (out.free_body) {
+    for (const auto& s : determinate)
+      for (fem::Index node : s.nodes)
+        for (int c = 0; c < 3; ++c)
+          if (s.fixed[size_t(c)]) support_equations.push_back(dofs.equation(3 * node + c));
+    const Eigen::Vector3d centre = mesh.nodes.colwise().mean().transpose();
+    R.resize(n, 6);
+    for (int k = 0; k < 6; ++k) {
+      Eigen::Vector3d t = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+      (k < 3 ? t : w)[k % 3] = 1.0;
+      const VectorXd field = fem::rigid_body_field(mesh, t - w.cross(centre), w);
+      R.col(k) = restrict_rows(field, dofs);
+    }
+  }
+  StaticSolve static_solve;
+  std::unique_ptr<OwnFactor> own;
+  if (supported) {
+    // The free part's static solve over all 3N DoFs, with its 3-2-1 support:
+    // check that it is one (6 prescribed DoFs holding the six rigid modes).
+    const fem::DofMap& sd = supported->dofs();
+    std::sort(support_equations.begin(), support_equations.end());
+    support_equations.erase(std::unique(support_equations.begin(), support_equations.end()),
+                            support_equations.end());
+    MatrixXd Rs(Index(support_equations.size()), 6);
+    for (size_t i = 0; i < support_equations.size(); ++i) Rs.row(Index(i)) = R.row(support_equations[i]);
+    require(sd.prescribed_count() == 6 && Eigen::FullPivLU<MatrixXd>(Rs).rank() == 6,
+            "Craig-Bampton reduction of '{}': the given static analysis has {} prescribed DoFs; a "
+            "statically determinate (3-2-1) support of the free part is needed",
+            label, sd.prescribed_count());
+    const Index nodes = mesh.node_count();
+    static_solve = [supported, nodes](const MatrixXd& B) {
+      const std::vector<fem::DisplacementField> u = supported->solve_forces(B);
+      MatrixXd X(3 * nodes, B.cols());
+      for (Index k = 0; k < B.cols(); ++k)
+        X.col(k) = Eigen::Map<const Eigen::VectorXd>(u[size_t(k)].data(), 3 * nodes);
+      return X;
+    };
+    out.factor_nonzeros = supported->solver_statistics().factor_nonzeros;
+  } else {
+    own = std::make_unique<OwnFactor>(K, support_equations, label);
+    static_solve = [o = own.get()](const MatrixXd& B) { return o->solve(B); };
+    out.factor_nonzeros = own->factor_nonzeros();
+  }
+  PartSolver solver(static_solve, G, R, label);
+  out.constraint_modes = solver.constraint_modes();
+
+  // Fixed-interface modes: growing batches until one lies above the cutoff.
+  out.cutoff_hz = options.cutoff_factor * options.highest_frequency_of_interest_hz;
+  const auto Ku = K.selfadjointView<Eigen::Upper>();
+  const auto Mu = M.selfadjointView<Eigen::Upper>();
+  fem::EigenOperators ops;
+  ops.size = n;
+  ops.shift_rad2_s2 = 0.0;
+  ops.shift_inverse = [&](const Eigen::Ref<const VectorXd>& x, Eigen::Ref<VectorXd> y) {
+    y = solver.fixed_interface_inverse(MatrixXd(x)).col(0);
+  };
+  ops.mass = [&](const Eigen::Ref<const VectorXd>& x, Eigen::Ref<VectorXd> y) { y = Mu * x; };
+  ops.stiffness = [&](const Eigen::Ref<const VectorXd>& x, Eigen::Ref<VectorXd> y) { y = Ku * x; };
+  {
+    std::mt19937_64 random(12345);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    VectorXd v(n);
+    for (Index i = 0; i < n; ++i) v[i] = uniform(random);
+    ops.start = solver.fixed_interface_inverse(MatrixXd(Mu * v)).col(0);  // inside G^T u = 0
+  }
+  const Index interior = n - nb - R.cols();  // dimension of the fixed-interface space (<=)
+  fem::EigenOptions eigen = options.eigen;
+  eigen.modes = int(std::min<Index>(options.first_batch, interior - 1));
+  fem::EigenSolution modes;
+  for (;;) {
+    modes = fem::solve_eigen(ops, eigen, nullptr);
+    const double highest = modes.frequency_hz[modes.frequency_hz.size() - 1];
+    if (highest > out.cutoff_hz) break;
+    require(eigen.modes < options.max_modes && eigen.modes < interior - 1,
+            "Craig-Bampton reduction of '{}': {} fixed-interface modes lie below the cutoff "
+            "{:.4g} Hz (max modes {}): raise max_modes or lower the cutoff",
+            label, eigen.modes, out.cutoff_hz, options.max_modes);
+    eigen.modes = int(std::min<Index>({2 * Index(eigen.modes), Index(options.max_modes), interior - 1}));
+  }
+  Index kept = 0;
+  while (kept < modes.frequency_hz.size() && modes.frequency_hz[kept] <= out.cutoff_hz) ++kept;
+  out.first_dropped_hz = modes.frequency_hz[kept];
+  out.mode_count = kept;
+  out.normal_modes = modes.modes.leftCols(kept);
+  out.normal_frequency_hz = modes.frequency_hz.head(kept);
+
+  // Residual vectors: the fixed-interface static response to the constraint
+  // modes' inertia, less its part in the kept modes (header), M-orthonormal
+  // and K-diagonal among themselves.
+  MatrixXd X(n, 0);
+  if (options.residual_vectors) {
+    MatrixXd MPsi(n, nb);
+    for (Index j = 0; j < nb; ++j) MPsi.col(j) = Mu * out.constraint_modes.col(j);
+    X = solver.fixed_interface_inverse(MPsi);
+    if (kept > 0) {
+      const Eigen::VectorXd w2 = (2.0 * std::numbers::pi * out.normal_frequency_hz).array().square();
+      X -= out.normal_modes * (w2.cwiseInverse().asDiagonal() * (out.normal_modes.transpose() * MPsi));
+      // Twice, against round-off: X stays M-orthogonal to the kept modes.
+      MatrixXd MX(n, X.cols());
+      for (Index j = 0; j < X.cols(); ++j) MX.col(j) = Mu * X.col(j);
+      X -= out.normal_modes * (out.normal_modes.transpose() * MX);
+    }
+    MatrixXd MX(n, X.cols()), KX(n, X.cols());
+    for (Index j = 0; j < X.cols(); ++j) MX.col(j) = Mu * X.col(j);
+    const Eigen::SelfAdjointEigenSolver<MatrixXd> gram(X.transpose() * MX);
+    const double largest = gram.eigenvalues().maxCoeff();
+    std::vector<Index> keep;
+    for (Index j = 0; j < X.cols(); ++j)
+      if (gram.eigenvalues()[j] > 1e-12 * largest) keep.push_back(j);
+    MatrixXd X1(n, Index(keep.size()));
+    for (size_t j = 0; j < keep.size(); ++j)
+      X1.col(Index(j)) = X * gram.eigenvectors().col(keep[j]) /
+                         std::sqrt(gram.eigenvalues()[keep[j]]);
+    MatrixXd KX1(n, X1.cols()), MX1(n, X1.cols());
+    for (Index j = 0; j < X1.cols(); ++j) {
+      KX1.col(j) = Ku * X1.col(j);
+      MX1.col(j) = Mu * X1.col(j);
+    }
+    const Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> diag(X1.transpose() * KX1,
+                                                                  X1.transpose() * MX1);
+    X = X1 * diag.eigenvectors();
+    out.residual_frequency_hz.resize(X.cols());
+    for (Index j = 0; j < X.cols(); ++j)
+      out.residual_frequency_hz[j] = fem::frequency_hz(diag.eigenvalues()[j]);
+  }
+  out.residual_vectors = X;
+  out.residual_count = X.cols();
+
+  // Reduced matrices by projection.
+  MatrixXd T(n, nb + kept + X.cols());
+  T << out.constraint_modes, out.normal_modes, X;
+  MatrixXd KT(n, T.cols()), MT(n, T.cols());
+  for (Index j = 0; j < T.cols(); ++j) {
+    KT.col(j) = Ku * T.col(j);
+    MT.col(j) = Mu * T.col(j);
+  }
+  out.stiffness = T.transpose() * KT;
+  out.mass = T.transpose() * MT;
+  out.stiffness = (0.5 * (out.stiffness + out.stiffness.transpose())).eval();
+  out.mass = (0.5 * (out.mass + out.mass.transpose())).eval();
+  const double kmax = out.stiffness.cwiseAbs().maxCoeff();
+  const Index interior_count = kept + X.cols();
+  out.coupling_stiffness_check =
+      interior_count > 0
+          ? out.stiffness.bottomLeftCorner(interior_count, nb).cwiseAbs().maxCoeff() / kmax
+          : 0.0;
+  double constraint = (G.transpose() * out.constraint_modes - MatrixXd::Identity(nb, nb))
+                          .cwiseAbs()
+                          .maxCoeff();
+  if (kept > 0)
+    constraint = std::max(constraint, (G.transpose() * out.normal_modes).cwiseAbs().maxCoeff() /
+                                          out.normal_modes.cwiseAbs().maxCoeff());
+  out.constraint_check = constraint;
+  out.lanczos_solves = solver.solves();
+  out.seconds = clock.seconds();
+  if (log) log->info("{}", format_check(out));
+  return out;
+}
+
+}  // namespace
+
+CraigBamptonModel reduce_craig_bampton(const fem::FeModel& part,
+                                       const std::vector<PartInterface>& interfaces,
+                                       const CraigBamptonOptions& options, const Log* log) {
+  return reduce(part, interfaces, options, log, nullptr);
+}
+
+CraigBamptonModel reduce_craig_bampton(fem::LinearStaticAnalysis& supported,
+                                       const std::vector<PartInterface>& interfaces,
+                                       const CraigBamptonOptions& options, const Log* log) {
+  fem::FeModel free_part;
+  free_part.mesh = supported.model().mesh;
+  free_part.material = supported.model().material;
+  return reduce(free_part, interfaces, options, log, &supported);
+}
+
+std::string format_check(const CraigBamptonModel& m) {
+  std::string text = fmt::format(
+      "Craig-Bampton '{}': {} free DoFs{} -> {} coordinates ({} boundary over {} interface(s), "
+      "{} fixed-interface modes, {} residual vectors); factor nnz {:.3g}, {} solves, {:.2f} s\n",
+      m.label, m.free_dofs, m.free_body ? " (free body: 3-2-1 support + 6 rigid modes)" : "",
+      m.boundary_count + m.mode_count + m.residual_count, m.boundary_count,
+      m.interface_names.size(), m.mode_count, m.residual_count, m.factor_nonzeros,
+      m.lanczos_solves, m.seconds);
+  text += fmt::format(
+      "  part-mode rule: keep fixed-interface modes up to the cutoff {:.5g} Hz; kept {} "
+      "({:.5g} .. {:.5g} Hz), first dropped {:.5g} Hz ({:.2f} x cutoff: the rule {})\n",
+      m.cutoff_hz, m.mode_count, m.mode_count ? m.normal_frequency_hz[0] : 0.0,
+      m.mode_count ? m.normal_frequency_hz[m.mode_count - 1] : 0.0, m.first_dropped_hz,
+      m.first_dropped_hz / m.cutoff_hz, m.first_dropped_hz > m.cutoff_hz ? "holds" : "FAILS");
+  text += fmt::format("  checks: |Phi^T K Psi| / max|K_r| = {:.1e}, interface constraint {:.1e}",
+                      m.coupling_stiffness_check, m.constraint_check);
+  return text;
+}
+
+Eigen::VectorXd dense_frequencies_hz(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M,
+                                     Eigen::Index count) {
+  require(K.rows() == K.cols() && M.rows() == K.rows() && M.cols() == K.cols(),
+          "dense eigen solve: stiffness {} x {}, mass {} x {}", K.rows(), K.cols(), M.rows(),
+          M.cols());
+  require(count >= 1 && count <= K.rows(), "dense eigen solve: {} frequencies of a {}-DoF model",
+          count, K.rows());
+  const Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> eig(K, M, Eigen::EigenvaluesOnly);
+  require(eig.info() == Eigen::Success,
+          "dense eigen solve: the mass matrix is not positive definite ({} DoFs)", K.rows());
+  VectorXd f(count);
+  for (Index i = 0; i < count; ++i) f[i] = fem::frequency_hz(eig.eigenvalues()[i]);
+  return f;
+}
+
+}  // namespace kinetofem::vibration
