@@ -14,6 +14,7 @@
 #include "kinetofem/solver/dof_map.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/mass_matrix.hpp"
+#include "kinetofem/verification/beam_vibration.hpp"
 #include "kinetofem/verification/box_mesh.hpp"
 
 namespace kinetofem::vibration_tests {
@@ -29,6 +30,16 @@ struct BeamGeometry {
     return depth_m * thickness_m * thickness_m * thickness_m / 12.0;
   }
   double mass_kg() const { return density_kg_m3 * length_m * area_m2(); }
+  // The Timoshenko beam of this bar bending with `second_moment_m4` (nu = 0: G = E/2).
+  verification::TimoshenkoBeam timoshenko(double second_moment_m4) const {
+    return {.length_m = length_m,
+            .youngs_modulus_pa = youngs_modulus_pa,
+            .shear_modulus_pa = youngs_modulus_pa / 2.0,
+            .density_kg_m3 = density_kg_m3,
+            .area_m2 = area_m2(),
+            .second_moment_m4 = second_moment_m4,
+            .shear_coefficient = verification::cowper_rectangle_shear_coefficient(0.0)};
+  }
 };
 
 inline fem::FeModel beam_model(const BeamGeometry& g, fem::ElementType type,

@@ -65,15 +65,8 @@ BendingFrequencies solve_cantilever(const BeamGeometry& g, int k, int modes) {
 
 TEST(CantileverModes, FirstThreeBendingFrequenciesMatchTimoshenkoBeam) {
   const BeamGeometry g;
-  kv::TimoshenkoBeam beam_y{.length_m = g.length_m,
-                            .youngs_modulus_pa = g.youngs_modulus_pa,
-                            .shear_modulus_pa = g.youngs_modulus_pa / 2.0,
-                            .density_kg_m3 = g.density_kg_m3,
-                            .area_m2 = g.area_m2(),
-                            .second_moment_m4 = g.second_moment_y_m4(),
-                            .shear_coefficient = kv::cowper_rectangle_shear_coefficient(0.0)};
-  kv::TimoshenkoBeam beam_z = beam_y;
-  beam_z.second_moment_m4 = g.second_moment_z_m4();
+  const kv::TimoshenkoBeam beam_y = g.timoshenko(g.second_moment_y_m4());
+  const kv::TimoshenkoBeam beam_z = g.timoshenko(g.second_moment_z_m4());
   const auto ref_y = kv::timoshenko_frequencies_hz(beam_y, kv::BeamEnds::ClampedFree, 3);
   const auto ref_z = kv::timoshenko_frequencies_hz(beam_z, kv::BeamEnds::ClampedFree, 3);
   for (int n = 0; n < 3; ++n)

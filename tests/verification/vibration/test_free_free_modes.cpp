@@ -26,13 +26,7 @@ TEST(FreeFreeModes, SixRigidBodyModesThenTheFreeFreeBeamFrequency) {
   const fem::FeModel model = beam_model(g, fem::ElementType::Hex20, {16, 4, 2}, false);
   const fem::DofMap dofs(model.mesh.node_count(), {});
   const Matrices m = assemble(model, dofs);
-  kv::TimoshenkoBeam beam{.length_m = g.length_m,
-                          .youngs_modulus_pa = g.youngs_modulus_pa,
-                          .shear_modulus_pa = g.youngs_modulus_pa / 2.0,
-                          .density_kg_m3 = g.density_kg_m3,
-                          .area_m2 = g.area_m2(),
-                          .second_moment_m4 = g.second_moment_z_m4(),
-                          .shear_coefficient = kv::cowper_rectangle_shear_coefficient(0.0)};
+  const kv::TimoshenkoBeam beam = g.timoshenko(g.second_moment_z_m4());
   const double reference = kv::timoshenko_frequencies_hz(beam, kv::BeamEnds::FreeFree, 1)[0];
   const double euler = kv::euler_bernoulli_frequency_hz(beam, kv::BeamEnds::FreeFree, 1);
 
