@@ -23,6 +23,7 @@
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/postproc/results_layout.hpp"
 #include "kinetofem/postproc/time_history.hpp"
+#include "kinetofem/postproc/vibration_results.hpp"
 
 namespace kinetofem::app {
 
@@ -108,7 +109,9 @@ void print_summary(const post::ResultsFile& r, const std::vector<post::HotSpot>&
     const fem::Mesh mesh = r.read_mesh(body);
     fmt::print("    {}: {} nodes, {} elements\n", body, mesh.node_count(), mesh.element_count());
     const auto times = r.series_times(body);
-    if (!times.empty())
+    if (!times.empty() && post::is_vibration_body(body))  // mode shapes: the series "time" is the mode number
+      fmt::print("      mode shapes: modes 1 .. {}: {}\n", times.size(), listed(r.series_fields(body)));
+    else if (!times.empty())
       fmt::print("      series: {} output times, {:.4g} .. {:.4g} s: {}\n", times.size(), times.front(),
                  times.back(), listed(r.series_fields(body)));
     fmt::print("      static fields: {}\n", listed(r.static_fields(body)));
@@ -118,6 +121,7 @@ void print_summary(const post::ResultsFile& r, const std::vector<post::HotSpot>&
 
   fmt::print("  maxima (envelopes over the motion; static fields of static load cases):\n");
   for (const auto& body : r.bodies()) {
+    if (post::is_vibration_body(body)) continue;  // mode shapes, normalized to 1: nothing to rank
     std::vector<std::string> fields = r.envelopes(body);
     for (const auto& f : r.series_fields(body))
       if (std::find(fields.begin(), fields.end(), f) == fields.end() && r.read_step(body, f, 0).values.cols() == 1)
@@ -185,6 +189,30 @@ void print_fatigue(const post::ResultsFile& r) {
                i + 1, n.body, n.node, n.position_m.x() * 1e3, n.position_m.y() * 1e3, n.position_m.z() * 1e3,
                n.detail_category_pa * 1e-6, n.damage_per_cycle, n.life_cycles, n.life_h, n.utilization,
                n.max_range_pa * 1e-6);
+  }
+}
+
+// The vibration over the motion, when the run had it: the first natural frequency's range over
+// the motion and in the static pose, and per tracked point its dynamic amplification and
+// settling after the stop.
+void print_vibration(const post::ResultsFile& r) {
+  const post::VibrationContents v = post::vibration_contents(r);
+  if (!v.frequencies) return;
+  const post::NaturalFrequencies f = post::read_natural_frequencies(r);
+  fmt::print("  vibration ({} lowest modes of the elastic assembly in each pose):\n", f.modes());
+  fmt::print("    first natural frequency over the motion {:.3f} .. {:.3f} Hz (lowest at t = {:.4f} s){}\n",
+             f.lowest_first_hz, f.highest_first_hz, f.lowest_first_time_s,
+             f.static_hz.empty() ? std::string("") : fmt::format("; static pose {:.3f} Hz", f.static_hz.front()));
+  for (const auto& point : v.points) {
+    const post::PointVibrationData p = post::read_point_vibration(r, point);
+    fmt::print("    point {}: dynamic amplification {:.3f} (peak |u| {:.4f} mm with vibration, {:.4f} mm quasi-static), "
+               "rings up to {:.4f} mm after the stop, {}\n",
+               point, p.dynamic_amplification, p.peak_dynamic_m * 1e3, p.peak_quasi_static_m * 1e3,
+               p.amplitude_at_stop_m * 1e3,
+               std::isfinite(p.settling_time_s)
+                   ? fmt::format("settles within {:.4f} mm {:.3f} s after the stop", p.settling_tolerance_m * 1e3,
+                                 p.settling_time_s)
+                   : fmt::format("does not settle within {:.4f} mm", p.settling_tolerance_m * 1e3));
   }
 }
 
@@ -287,6 +315,26 @@ std::pair<int, int> parse_image_size(const std::string& text) {
 }
 
 
+// The pictures of the vibration over the motion: the natural frequencies, and each tracked
+// point's vibration over the motion and after the stop.
+void write_vibration_pictures(const post::ResultsFile& r, const post::VibrationContents& vibration,
+                              const fs::path& png_dir, const post::PictureOptions& po, std::vector<std::string>& written) {
+  if (vibration.frequencies) {
+    const fs::path p = png_dir / "vibration_frequencies.png";
+    const post::FrequencyPictureInfo info = post::write_frequency_picture(r, p, po);
+    written.push_back(fmt::format("{}  ({} modes; mode 1 {:.2f} .. {:.2f} Hz, lowest at {})", p.string(), info.modes,
+                                  info.lowest_first_hz, info.highest_first_hz, when(info.lowest_first_time_s)));
+  }
+  for (const auto& point : vibration.points) {
+    const fs::path p = png_dir / ("vibration_point_" + file_safe(point) + ".png");
+    const post::PointVibrationPictureInfo info = post::write_point_vibration_picture(r, p, point, po);
+    written.push_back(fmt::format("{}  (amplification {:.3f}, {})", p.string(), info.dynamic_amplification,
+                                  std::isfinite(info.settling_time_s)
+                                      ? fmt::format("settles {:.3f} s after the stop", info.settling_time_s)
+                                      : std::string("does not settle")));
+  }
+}
+
 // The pictures of the elastic assembly: the static pose study, the step of the
 // largest deflection of the gripper point H, and each tracked point's deflection.
 void write_assembly_pictures(const post::ResultsFile& r, const post::AssemblyContents& assembly, const fs::path& png_dir,
@@ -336,6 +384,7 @@ int run_post(const PostOptions& o) {
       post::find_hot_spots(envelopes, {.count = o.hot_spots, .separation_m = o.separation_mm * 1e-3});
   print_summary(r, spots, envelopes.empty() ? std::string("Pa") : envelopes.front().units, o);
   print_fatigue(r);
+  print_vibration(r);
   if (history) print_history(*history);
 
   fs::path csv_dir = o.csv_dir, png_dir = o.png_dir;
@@ -372,9 +421,10 @@ int run_post(const PostOptions& o) {
     make_directory(png_dir, "--png");
     const post::AssemblyContents assembly = post::assembly_contents(r);
     const bool links_have_field = std::any_of(envelopes.begin(), envelopes.end(), [&](const post::BodyEnvelope& e) {
-      return std::find(assembly.bodies.begin(), assembly.bodies.end(), e.body) == assembly.bodies.end();
+      return std::find(assembly.bodies.begin(), assembly.bodies.end(), e.body) == assembly.bodies.end() &&
+             !post::is_vibration_body(e.body);
     });
-    if (links_have_field) {  // the stress picture leaves the assembly's bodies out
+    if (links_have_field) {  // the stress picture leaves the assembly's and the vibration's bodies out
       post::StressPictureOptions so;
       so.field = o.field;
       so.deformation_scale = o.deformation_scale;
@@ -421,6 +471,7 @@ int run_post(const PostOptions& o) {
         written.push_back(p.string());
       }
     if (!assembly.bodies.empty()) write_assembly_pictures(r, assembly, png_dir, po, written);
+    write_vibration_pictures(r, post::vibration_contents(r), png_dir, po, written);
   }
   if (!written.empty()) {
     fmt::print("  written:\n");

@@ -10,6 +10,7 @@
 #include "kinetofem/app/assembly_keys.hpp"
 #include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/fatigue_keys.hpp"
+#include "kinetofem/app/vibration_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/app/part_keys.hpp"
@@ -220,6 +221,7 @@ const std::vector<KeySpec>& linkage_schema() {
     add_part_keys(s);
     add_linkage_assembly_keys(s);
     add_fatigue_keys(s);
+    add_vibration_keys(s);
     for (auto&& k : part_mesh_keys()) s.push_back(std::move(k));
     for (auto&& k : motion_solver_keys()) s.push_back(std::move(k));
     s.push_back({.path = "static_study.enabled", .type = Type::Boolean, .default_number = 0,
@@ -443,6 +445,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
     std::vector<std::string> bodies_with_parts;
     for (const auto& p : run_case.parts) bodies_with_parts.push_back(p.attachments.body);
     run_case.assembly = read_linkage_assembly(c, m, bodies_with_parts);
+    run_case.vibration = read_vibration(c, run_case.assembly);
     run_case.fatigue = read_fatigue(c, bodies_with_parts);
   }
   run_case.material = read_material(c);
@@ -463,6 +466,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   run.parts = result.parts;
   run.assembly = result.assembly;
   run.fatigue = result.fatigue;
+  run.vibration = result.vibration;
   const pipeline::MechanismExtremes extremes = pipeline::mechanism_extremes(run.model, run.results);
   run.max_abs_drive_effort = extremes.max_abs_drive_effort;
   run.min_chain_tension_n = extremes.min_chain_tension_n;
@@ -471,6 +475,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
               run.results.frames.size(), run_case.times.back(), extremes.text.c_str());
   if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
   if (run.assembly) std::printf("%s", structure::format_assembly_summary(*run.assembly).c_str());
+  if (result.vibration) std::printf("%s", structure::format_vibration_summary(*result.vibration).c_str());
   report_fatigue(run.fatigue, run.results_file);
   std::printf("%s\n", run.results.format_checks().c_str());
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());

@@ -8,6 +8,7 @@
 #include "kinetofem/app/assembly_keys.hpp"
 #include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/fatigue_keys.hpp"
+#include "kinetofem/app/vibration_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/core/error.hpp"
@@ -61,6 +62,7 @@ const std::vector<KeySpec>& manipulator_schema() {
     for (auto&& k : lever_chain_dimension_keys("mechanism.")) s.push_back(std::move(k));
     add_manipulator_assembly_keys(s);
     add_fatigue_keys(s);
+    add_vibration_keys(s);
     add_motion_law_keys(s, "motion.", "law",
                         {.default_law = "polynomial345", .default_stroke_deg = 80.0, .default_duration_s = 2.0, .angles_only = true});
     for (auto&& k : part_mesh_keys()) s.push_back(std::move(k));
@@ -165,6 +167,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   if (c.boolean("static_study.enabled")) run_case.static_pose = std::vector<double>{c.number("static_study.dphi_deg")};
   run_case.tracked_points = {{"arm", "H"}};
   run_case.assembly = read_manipulator_assembly(c, chain ? "chain" : "", "lever_drive", "arm", "gripper_mount");
+  run_case.vibration = read_vibration(c, run_case.assembly);
   {
     std::vector<std::string> bodies;
     for (const auto& p : run_case.parts) bodies.push_back(p.attachments.body);
@@ -198,10 +201,12 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   summary.max_chain_tension_n = me.max_chain_tension_n;
   summary.assembly = run.assembly;
   summary.fatigue = run.fatigue;
+  summary.vibration = run.vibration;
   std::printf("\nSummary of '%s' (%s manipulator, %zu output times over %.3f s)\n%s%s", name.c_str(),
               chain ? "lever-chain" : "lever", run.motion.frames.size(), run_case.times.back(),
               pipeline::format_part_table(run.parts).c_str(), me.text.c_str());
   if (run.assembly) std::printf("%s", structure::format_assembly_summary(*run.assembly).c_str());
+  if (run.vibration) std::printf("%s", structure::format_vibration_summary(*run.vibration).c_str());
   report_fatigue(run.fatigue, run.results_file);
   print_published_comparison(summary, def.type, run_case.static_pose.has_value());
   summary.total_seconds = total.seconds();

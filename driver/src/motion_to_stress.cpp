@@ -113,17 +113,28 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
     return 0;
   });
+  require(!c.vibration || c.assembly, "{}: the vibration needs the elastic assembly (assembly.enabled)", c.label);
+  std::vector<fem::LinearStaticAnalysis*> shared;  // the parts' factorizations, for steps 8 and after
+  for (const auto& f : factorized)
+    if (f) shared.push_back(&f->analysis());
+  structure::AssemblyOptions assembly_options;
   if (c.assembly) {
+    assembly_options = *c.assembly;
+    assembly_options.solver = c.stress.solver;
+    assembly_options.field_steps = c.stress.callback_steps;
     log.info("elastic assembly: {} parts, {} output times{}", parts.size(), run.motion.frames.size(),
              run.static_pose ? " + the static study" : "");
     run.assembly = in_stage(c, "the elastic assembly cannot be solved or written", [&] {
-      std::vector<fem::LinearStaticAnalysis*> shared;
-      for (const auto& f : factorized) shared.push_back(&f->analysis());
-      structure::AssemblyOptions options = *c.assembly;
-      options.solver = c.stress.solver;
-      options.field_steps = c.stress.callback_steps;
       return structure::analyse_assembly_over_motion(parts, run.model, run.motion.frames, run.static_pose, writer,
-                                                     options, log, shared);
+                                                     assembly_options, log, shared);
+    });
+  }
+  if (c.vibration) {
+    log.info("vibration: the modes of the elastic assembly at {} output times{}", run.motion.frames.size(),
+             run.static_pose ? " + the static pose" : "");
+    run.vibration = in_stage(c, "the vibration cannot be analysed or written", [&] {
+      return structure::analyse_vibration_over_motion(parts, run.model, run.motion.frames, run.static_pose, writer,
+                                                      assembly_options, *c.vibration, *run.assembly, log, shared);
     });
   }
   writer.commit();

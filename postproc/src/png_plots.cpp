@@ -20,6 +20,7 @@
 #include "kinetofem/postproc/hot_spots.hpp"
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/postproc/time_history.hpp"
+#include "kinetofem/postproc/vibration_results.hpp"
 
 namespace kinetofem::post {
 
@@ -137,13 +138,27 @@ std::string tick_label(double v, double step) {
 }
 
 
-// A rectangle of the picture (px) showing a data range; y grows upwards in data.
+// A rectangle of the picture (px) showing a data range; y grows upwards in data. With log_y
+// (0 < y0 < y1) y is drawn on a log scale, and values at or below y0 at the bottom edge.
 struct Axes {
   double left, top, width, height;  // px
   double x0, x1, y0, y1;            // data
+  bool log_y = false;
   double X(double x) const { return left + (x - x0) / (x1 - x0) * width; }
-  double Y(double y) const { return top + height - (y - y0) / (y1 - y0) * height; }
+  double Y(double y) const {
+    const double share = log_y ? std::log10(std::max(y, y0) / y0) / std::log10(y1 / y0) : (y - y0) / (y1 - y0);
+    return top + height - share * height;
+  }
 };
+
+// The ticks of a log axis from y0 to y1 (> 0): every decade 10^k inside, and their labels.
+std::vector<double> decades_of(double y0, double y1) {
+  std::vector<double> t;
+  for (double k = std::ceil(std::log10(y0) - 1e-9); k <= std::floor(std::log10(y1) + 1e-9); ++k)
+    t.push_back(std::pow(10.0, k));
+  return t;
+}
+std::string decade_label(double v) { return v >= 1e-3 && v < 1e5 ? fmt::format("{:g}", v) : fmt::format("1e{:.0f}", std::log10(v)); }
 
 void clip_to(cairo_t* cr, const Axes& a) {
   cairo_rectangle(cr, a.left, a.top, a.width, a.height);
@@ -155,6 +170,7 @@ void draw_axes(cairo_t* cr, const Axes& a, const std::string& xlabel, const std:
                double font, bool grid, int target_ticks_x = 8, int target_ticks_y = 6) {
   const double sx = nice_step(a.x1 - a.x0, std::max(2, target_ticks_x));
   const double sy = nice_step(a.y1 - a.y0, std::max(2, target_ticks_y));
+  const std::vector<double> y_ticks = a.log_y ? decades_of(a.y0, a.y1) : ticks_of(a.y0, a.y1, sy);
   cairo_save(cr);
   cairo_set_line_width(cr, 1.0);
   if (grid) {
@@ -163,11 +179,22 @@ void draw_axes(cairo_t* cr, const Axes& a, const std::string& xlabel, const std:
       cairo_move_to(cr, std::round(a.X(x)) + 0.5, a.top);
       cairo_line_to(cr, std::round(a.X(x)) + 0.5, a.top + a.height);
     }
-    for (double y : ticks_of(a.y0, a.y1, sy)) {
+    for (double y : y_ticks) {
       cairo_move_to(cr, a.left, std::round(a.Y(y)) + 0.5);
       cairo_line_to(cr, a.left + a.width, std::round(a.Y(y)) + 0.5);
     }
     cairo_stroke(cr);
+    if (a.log_y) {  // fainter lines at 2 .. 9 x 10^k
+      cairo_set_source_rgb(cr, 0.95, 0.95, 0.95);
+      for (double k = std::floor(std::log10(a.y0)); k <= std::ceil(std::log10(a.y1)); ++k)
+        for (int f = 2; f <= 9; ++f) {
+          const double y = f * std::pow(10.0, k);
+          if (y <= a.y0 || y >= a.y1) continue;
+          cairo_move_to(cr, a.left, std::round(a.Y(y)) + 0.5);
+          cairo_line_to(cr, a.left + a.width, std::round(a.Y(y)) + 0.5);
+        }
+      cairo_stroke(cr);
+    }
   }
   cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
   cairo_rectangle(cr, std::round(a.left) + 0.5, std::round(a.top) + 0.5, std::round(a.width), std::round(a.height));
@@ -179,11 +206,11 @@ void draw_axes(cairo_t* cr, const Axes& a, const std::string& xlabel, const std:
     cairo_line_to(cr, px, a.top + a.height + 5);
     text(cr, px, a.top + a.height + 8, tick_label(x, sx), font, 0.5, 0.0);
   }
-  for (double y : ticks_of(a.y0, a.y1, sy)) {
+  for (double y : y_ticks) {
     const double py = std::round(a.Y(y)) + 0.5;
     cairo_move_to(cr, a.left - 5, py);
     cairo_line_to(cr, a.left, py);
-    const std::string label = tick_label(y, sy);
+    const std::string label = a.log_y ? decade_label(y) : tick_label(y, sy);
     widest = std::max(widest, text_width(cr, label, font));
     text(cr, a.left - 8, py, label, font, 1.0, 0.5);
   }
@@ -398,11 +425,15 @@ void stroke_paths(cairo_t* cr, const Axes& ax, const std::vector<std::vector<fem
 }
 
 // A ring at (px, py) with a leader line and a boxed bold label. The label goes
-// away from the nearer side edge and below the point near the top edge, unless
-// dx, dy (+-1) are given.
+// away from the nearer side edge (to the other side where only that one has room
+// for it) and below the point near the top edge, unless dx, dy (+-1) are given.
 void mark_point(cairo_t* cr, const Axes& ax, double px, double py, const std::string& label, double font, int dx = 0,
                 int dy = 0) {
-  if (dx == 0) dx = px - ax.left > ax.left + ax.width - px ? -1 : 1;
+  if (dx == 0) {
+    const double needed = 30 + text_width(cr, label, font) * 1.08;
+    const bool right = px + needed <= ax.left + ax.width, left = px - needed >= ax.left;
+    dx = right != left ? (right ? 1 : -1) : px - ax.left > ax.left + ax.width - px ? -1 : 1;
+  }
   if (dy == 0) dy = py < ax.top + 40 ? 1 : -1;
   cairo_save(cr);
   cairo_new_path(cr);  // text() leaves a current point; the ring must not start from it
@@ -489,7 +520,7 @@ struct BodyView {
 StressPictureInfo write_stress_picture(const ResultsFile& results, const std::filesystem::path& png,
                                        const StressPictureOptions& options) {
   std::vector<BodyEnvelope> envelopes = max_envelopes(results, options.field);
-  std::erase_if(envelopes, [](const BodyEnvelope& e) { return is_assembly_body(e.body); });
+  std::erase_if(envelopes, [](const BodyEnvelope& e) { return is_assembly_body(e.body) || is_vibration_body(e.body); });
   require(!envelopes.empty(), "'{}': no body has a field '{}' to draw", results.path().string(), options.field);
   size_t peak_env = 0;
   for (size_t b = 1; b < envelopes.size(); ++b)
@@ -618,23 +649,39 @@ struct Curve {
   bool dashed = false;
 };
 
-// A line panel with its own y range (0 included; `headroom`, a share of the data's range, free above the
-// curves for a label), a legend at its right; returns the axes drawn.
+// How draw_curves chooses its y range.
+struct CurveRange {
+  double headroom = 0.0;       // a share of the data's range free above the curves (for a label)
+  std::vector<double> also_y;  // values the range must cover too (marks the caller draws)
+  // Log scale from the decade at or below `log_floor` (> 0) to the one at or above the largest
+  // value; values below the floor are drawn at the bottom edge. 0: linear, 0 included.
+  double log_floor = 0.0;
+};
+
+// A line panel with its own y range (CurveRange), a legend at its right; returns the axes drawn.
 Axes draw_curves(cairo_t* cr, const Axes& frame, const std::vector<Curve>& curves, const std::string& ylabel,
-                 const std::string& xlabel, const std::string& panel_title, double legend_x, double headroom = 0.0) {
+                 const std::string& xlabel, const std::string& panel_title, double legend_x,
+                 const CurveRange& range = {}) {
   double lo = 0, hi = 0, x0 = curves.front().x.front(), x1 = curves.front().x.back();
   for (const auto& c : curves)
     for (size_t i = 0; i < c.y.size(); ++i) {
       lo = std::min(lo, c.y[i]), hi = std::max(hi, c.y[i]);
       x0 = std::min(x0, c.x[i]), x1 = std::max(x1, c.x[i]);
     }
-  if (hi - lo <= 0) hi = lo + 1;
-  hi += headroom * (hi - lo);
-  const double step = nice_step(hi - lo, 6);
-  lo = std::floor(lo / step + 1e-9) * step, hi = std::ceil(hi / step - 1e-9) * step;
+  for (double y : range.also_y) lo = std::min(lo, y), hi = std::max(hi, y);
   if (x1 <= x0) x1 = x0 + 1;
   Axes ax = frame;
-  ax.x0 = x0, ax.x1 = x1, ax.y0 = lo, ax.y1 = hi;
+  ax.x0 = x0, ax.x1 = x1;
+  if (range.log_floor > 0) {
+    ax.log_y = true;
+    ax.y0 = std::pow(10.0, std::floor(std::log10(range.log_floor) + 1e-9));
+    ax.y1 = std::pow(10.0, std::ceil(std::log10(std::max(hi, 10 * ax.y0)) - 1e-9));
+  } else {
+    if (hi - lo <= 0) hi = lo + 1;
+    hi += range.headroom * (hi - lo);
+    const double step = nice_step(hi - lo, 6);
+    ax.y0 = std::floor(lo / step + 1e-9) * step, ax.y1 = std::ceil(hi / step - 1e-9) * step;
+  }
   const double font = 13;
   cairo_set_source_rgb(cr, 0, 0, 0);
   text(cr, ax.left, ax.top - 8, panel_title, font + 2, 0.0, 1.0, true);
@@ -1186,7 +1233,7 @@ PointDeflectionInfo write_point_deflection_picture(const ResultsFile& results, c
                                                : (canvas.height() - top - bottom - gap) / 2;
   const Axes ax = draw_curves(cr, Axes{left, top, width, panel_h, 0, 1, 0, 1}, components, "displacement [mm]",
                               "time [s]", fmt::format("Elastic displacement of {} (world axes)", point),
-                              left + width + 25, 0.2);
+                              left + width + 25, {.headroom = 0.2});
   mark_point(cr, ax, ax.X(info.time_s), ax.Y(info.max_m * 1e3),
              fmt::format("max {} at t = {:.3f} s", mm_text(info.max_m), info.time_s), 13, 0, -1);
   if (!contributions.empty()) {
@@ -1194,6 +1241,161 @@ PointDeflectionInfo write_point_deflection_picture(const ResultsFile& results, c
     draw_curves(cr, Axes{left, top + panel_h + gap, width, panel_h, 0, 1, 0, 1}, contributions, "along u [mm]",
                 "time [s]", "Contributions, component along u (they add up to |u|)",
                 left + width + 25);
+  }
+  canvas.save(png);
+  return info;
+}
+
+// ---- the vibration over the motion ----------------------------------------
+
+namespace {
+
+std::vector<double> as_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+// A vertical line through the whole of `ax` at x, with a label at its top (to its right).
+void vertical_line(cairo_t* cr, const Axes& ax, double x, const Rgb& colour, const std::string& label, bool dashed) {
+  const double px = std::round(ax.X(x)) + 0.5;
+  cairo_save(cr);
+  cairo_new_path(cr);
+  set_colour(cr, colour);
+  cairo_set_line_width(cr, 1.5);
+  const double dash[] = {6.0, 4.0};
+  cairo_set_dash(cr, dash, dashed ? 2 : 0, 0);
+  cairo_move_to(cr, px, ax.top);
+  cairo_line_to(cr, px, ax.top + ax.height);
+  cairo_stroke(cr);
+  const bool right = px < ax.left + ax.width - 260;  // the label on the side with room
+  const double tw = text_width(cr, label, 13) * 1.08;
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+  cairo_rectangle(cr, right ? px + 4 : px - tw - 8, ax.top + 6, tw + 4, 18);
+  cairo_fill(cr);
+  set_colour(cr, colour);
+  text(cr, right ? px + 6 : px - 6, ax.top + 20, label, 13, right ? 0.0 : 1.0, 1.0, true);
+  cairo_restore(cr);
+}
+
+}  // namespace
+
+FrequencyPictureInfo write_frequency_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                             const PictureOptions& options) {
+  const NaturalFrequencies f = read_natural_frequencies(results);
+  const FrequencyPictureInfo info{f.lowest_first_hz, f.lowest_first_time_s, f.highest_first_hz, f.modes(),
+                                  f.static_hz.empty() ? kNaN : f.static_hz.front()};
+  std::vector<Curve> modes;
+  for (int k = 0; k < f.modes(); ++k)
+    modes.push_back({fmt::format("mode {}", k + 1), f.time_s, as_vector(f.hz.col(k)), kPalette[size_t(k) % kPalette.size()],
+                     false});
+
+  Canvas canvas(options.width_px, options.height_px);
+  cairo_t* cr = canvas.cr();
+  title(cr, canvas, fmt::format("{}: natural frequencies of the manipulator over the motion", case_name(results, options)),
+        fmt::format("the {} lowest modes of the elastic assembly in each pose, {:.2f} .. {:.2f} s; mode 1 from {:.2f} to "
+                    "{:.2f} Hz{}",
+                    f.modes(), f.time_s.front(), f.time_s.back(), f.lowest_first_hz, f.highest_first_hz,
+                    f.static_hz.empty() ? std::string("") : fmt::format("; static pose {:.2f} Hz", f.static_hz.front())));
+  const double left = 100, ticks_w = f.static_hz.empty() ? 0.0 : 50.0, legend_w = 210, top = 100, bottom = 70;
+  const double width = canvas.width() - left - ticks_w - legend_w - 30;
+  const double legend_x = left + width + ticks_w + 25;
+  const Axes ax = draw_curves(cr, Axes{left, top, width, canvas.height() - top - bottom, 0, 1, 0, 1}, modes,
+                              "frequency [Hz]", "time [s]", "Natural frequencies (mode k: the k-th lowest)", legend_x,
+                              {.headroom = 0.08, .also_y = f.static_hz});
+  if (!f.static_hz.empty()) {
+    // Ticks just right of the frame, one per mode, and their label along them.
+    const double x = ax.left + ax.width;
+    cairo_save(cr);
+    cairo_set_line_width(cr, 3.0);
+    double y_lo = ax.top + ax.height, y_hi = ax.top;
+    for (size_t k = 0; k < f.static_hz.size(); ++k) {
+      const double py = ax.Y(f.static_hz[k]);
+      y_lo = std::min(y_lo, py), y_hi = std::max(y_hi, py);
+      set_colour(cr, kPalette[k % kPalette.size()]);
+      cairo_move_to(cr, x + 3, py);
+      cairo_line_to(cr, x + 21, py);
+      cairo_stroke(cr);
+    }
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    text(cr, x + 38, (y_lo + y_hi) / 2, "static pose", 13, 0.5, 0.5, false, -std::numbers::pi / 2);
+    // The legend's row for them, under the modes'.
+    const double ly = ax.top + 8 + 22.0 * double(modes.size()) + 6;
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    cairo_move_to(cr, legend_x + 8, ly);
+    cairo_line_to(cr, legend_x + 26, ly);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, legend_x + 42, ly, "static pose (ticks)", 13, 0.0, 0.5);
+    cairo_restore(cr);
+  }
+  mark_point(cr, ax, ax.X(info.lowest_first_time_s), ax.Y(info.lowest_first_hz),
+             fmt::format("lowest mode 1: {:.2f} Hz at t = {:.3f} s", info.lowest_first_hz, info.lowest_first_time_s), 13, 0,
+             1);
+  canvas.save(png);
+  return info;
+}
+
+PointVibrationPictureInfo write_point_vibration_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                                        const std::string& point, const PictureOptions& options) {
+  const PointVibrationData p = read_point_vibration(results, point);
+  const PointVibrationPictureInfo info{p.peak_dynamic_m, p.peak_quasi_static_m, p.dynamic_amplification,
+                                       p.settling_time_s};
+  const Eigen::VectorXd dynamic_mm = p.dynamic_m.rowwise().norm() * 1e3, quasi_mm = p.quasi_static_m.rowwise().norm() * 1e3;
+  // After the stop: the deviation from the rest position (the quasi-static u at the end).
+  const Eigen::RowVector3d rest = p.quasi_static_m.row(p.quasi_static_m.rows() - 1);
+  std::vector<double> after_t, deviation_mm;
+  for (size_t k = 0; k < p.time_s.size(); ++k)
+    if (p.time_s[k] >= p.stop_time_s - 1e-9) {
+      after_t.push_back(p.time_s[k]);
+      deviation_mm.push_back((p.dynamic_m.row(Eigen::Index(k)) - rest).norm() * 1e3);
+    }
+  const double tolerance_mm = p.settling_tolerance_m * 1e3;
+
+  const std::string damping = std::isnan(p.damping_ratio) ? std::string("")
+                                                          : fmt::format("modal damping {:.1f} %, ", 100 * p.damping_ratio);
+  const std::string settling = std::isfinite(p.settling_time_s)
+                                   ? fmt::format("settles within {} {:.3f} s after the stop", mm_text(p.settling_tolerance_m),
+                                                 p.settling_time_s)
+                                   : fmt::format("does not settle within {}", mm_text(p.settling_tolerance_m));
+  Canvas canvas(options.width_px, options.height_px);
+  cairo_t* cr = canvas.cr();
+  title(cr, canvas,
+        fmt::format("{}: vibration of point {}, dynamic amplification {:.3f}", case_name(results, options), point,
+                    p.dynamic_amplification),
+        fmt::format("{}peak |u| {} with vibration, {} quasi-static over the stroke (0 .. {:.2f} s); {}", damping,
+                    mm_text(p.peak_dynamic_m), mm_text(p.peak_quasi_static_m), p.stop_time_s, settling));
+  const double left = 100, legend_w = 300, top = 100, bottom = 70, gap = 90;
+  const double width = canvas.width() - left - legend_w - 30, legend_x = left + width + 25;
+  const double panel_h = (canvas.height() - top - bottom - gap) / 2;
+  const std::vector<Curve> magnitudes = {
+      {"|u| with vibration", p.time_s, as_vector(dynamic_mm), kPalette[0], false},
+      {"|u| quasi-static", p.time_s, as_vector(quasi_mm), kPalette[1], true}};
+  const Axes ax = draw_curves(cr, Axes{left, top, width, panel_h, 0, 1, 0, 1}, magnitudes, "|u| [mm]", "time [s]",
+                              fmt::format("Elastic displacement of {} over the motion and after the stop", point), legend_x,
+                              {.headroom = 0.25});
+  vertical_line(cr, ax, p.stop_time_s, {0.3, 0.3, 0.3}, fmt::format("stop, t = {:.3f} s", p.stop_time_s), true);
+  mark_point(cr, ax, ax.X(p.peak_dynamic_time_s), ax.Y(p.peak_dynamic_m * 1e3),
+             fmt::format("peak {} at t = {:.3f} s", mm_text(p.peak_dynamic_m), p.peak_dynamic_time_s), 13, 0, -1);
+
+  if (after_t.size() >= 2) {
+    // Log scale from a decade below the tolerance (or below the largest deviation, if smaller): the
+    // decay and the tolerance stay readable; the dips of |u - u_rest| at its zero crossings are cut there.
+    const double largest = *std::max_element(deviation_mm.begin(), deviation_mm.end());
+    const double floor_mm = 0.1 * (largest > 0 ? std::min(tolerance_mm, largest) : tolerance_mm);
+    const std::vector<Curve> after = {
+        {"|u(t) - u_rest| with vibration", after_t, deviation_mm, kPalette[0], false},
+        {fmt::format("settling tolerance {}", mm_text(p.settling_tolerance_m)),
+         {after_t.front(), after_t.back()}, {tolerance_mm, tolerance_mm}, kPalette[3], true}};
+    const Axes ax2 = draw_curves(cr, Axes{left, top + panel_h + gap, width, panel_h, 0, 1, 0, 1}, after,
+                                 "|u - u_rest| [mm] (log)", "time [s]",
+                                 "After the stop: deviation from the rest position u_rest (quasi-static u at the end)",
+                                 legend_x, {.log_floor = floor_mm});
+    const double settled_at = p.stop_time_s + p.settling_time_s;
+    if (!std::isfinite(p.settling_time_s))
+      vertical_line(cr, ax2, after_t.back(), kPalette[2], "does not settle", false);
+    else if (settled_at <= after_t.back() + 1e-12)
+      vertical_line(cr, ax2, settled_at, kPalette[2], fmt::format("settled {:.3f} s after the stop", p.settling_time_s),
+                    false);
+    else
+      vertical_line(cr, ax2, after_t.back(),  kPalette[2],
+                    fmt::format("settles {:.3f} s after the stop, beyond the window", p.settling_time_s), false);
   }
   canvas.save(png);
   return info;

@@ -357,6 +357,14 @@ FieldData ResultsFile::read_history(const std::string& name) const {
   return impl_->field(fmt::format("/{}", layout::kMechanism), name, "mechanism history");
 }
 
+std::vector<std::string> ResultsFile::tables() const {
+  return impl_->children_of(fmt::format("/{}", layout::kTables), h5::ChildKind::Dataset);
+}
+
+FieldData ResultsFile::read_table(const std::string& name) const {
+  return impl_->field(fmt::format("/{}", layout::kTables), name, "table");
+}
+
 std::vector<std::string> ResultsFile::datasets() const {
   return h5::all_datasets(impl_->io, impl_->file.get());
 }

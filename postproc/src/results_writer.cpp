@@ -66,6 +66,8 @@ struct FileState {
   h5::Handle file;
   h5::Handle bodies;
   h5::Handle mechanism;
+  h5::Handle tables;
+  std::set<std::string> table_names;
   std::vector<double> mechanism_time_s;
   bool mechanism_time_set = false;
   std::set<std::string> histories;
@@ -565,6 +567,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const Provenance
 ResultsWriter::~ResultsWriter() {
   if (!file_ || file_->committed) return;
   bodies_.clear();
+  file_->tables.reset();
   file_->mechanism.reset();
   file_->bodies.reset();
   file_->file.reset();
@@ -644,6 +647,30 @@ void ResultsWriter::write_history(const std::string& name, const std::string& un
   f.histories.insert(name);
 }
 
+void ResultsWriter::write_table(const std::string& name, const std::string& units,
+                                const Eigen::Ref<const FieldMatrix>& values,
+                                const std::vector<std::string>& component_names) {
+  detail::FileState& f = *file_;
+  f.check_writable();
+  require_valid_name(name, "table");
+  require(!f.table_names.contains(name), "table '{}' is already written", name);
+  require(values.cols() > 0, "table '{}' has no columns", name);
+  require_components(component_names, values.cols(), name);
+  f.guarded([&] {
+    const std::string group_path = fmt::format("/{}", layout::kTables);
+    if (!f.tables.valid()) f.tables = h5::make_group(f.io, f.file.get(), layout::kTables, group_path);
+    const std::string path = join(group_path, name);
+    const hsize_t dims[2] = {hsize_t(values.rows()), hsize_t(values.cols())};
+    FieldMatrix storage;
+    h5::write_dataset(f.io, f.tables.get(), name, path, dims, contiguous(values, storage), units);
+    if (!component_names.empty()) {
+      h5::Handle dataset = h5::open_dataset(f.io, f.tables.get(), name, path);
+      h5::write_attribute(f.io, dataset.get(), path, "components", component_names);
+    }
+  });
+  f.table_names.insert(name);
+}
+
 void ResultsWriter::commit() {
   detail::FileState& f = *file_;
   f.check_writable();
@@ -662,6 +689,7 @@ void ResultsWriter::commit() {
       s.statics.reset();
       s.group.reset();
     }
+    f.tables.reset();
     f.mechanism.reset();
     f.bodies.reset();
     KF_H5(f.io, "/", H5Fclose, f.file.release());

@@ -3,7 +3,6 @@
 #include <mpi.h>
 
 #include <HYPRE.h>
-#include <HYPRE_krylov.h>
 #include <HYPRE_parcsr_ls.h>
 // Internal header, only to read the number of levels and the size of each
 // level's operator (the operator complexity) after set-up.
@@ -15,8 +14,11 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
+#include <optional>
 
 #include <Eigen/Geometry>
+
+#include "kinetofem/solver/pcg_progress.hpp"
 
 namespace kinetofem::fem {
 
@@ -114,9 +116,12 @@ struct AmgSolver::Impl {
   HYPRE_ParCSRMatrix A = nullptr;
   HYPRE_IJVector b_ij = nullptr, x_ij = nullptr;
   HYPRE_ParVector b = nullptr, x = nullptr;
+  // PCG work vectors: residual r, search direction p, s = A p or C r.
+  HYPRE_IJVector r_ij = nullptr, p_ij = nullptr, s_ij = nullptr;
+  HYPRE_ParVector r = nullptr, p = nullptr, s = nullptr;
   std::vector<HYPRE_IJVector> mode_ij;
   std::vector<HYPRE_ParVector> modes;
-  HYPRE_Solver amg = nullptr, pcg = nullptr;
+  HYPRE_Solver amg = nullptr;
 
   const SymmetricUpperMatrix* matrix = nullptr;
   std::vector<Index> equation;  // of each DoF (-1: prescribed)
@@ -126,20 +131,37 @@ struct AmgSolver::Impl {
   ~Impl() { release(); }
 
   void release() {
-    if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
     if (amg) HYPRE_BoomerAMGDestroy(amg);
-    pcg = amg = nullptr;
+    amg = nullptr;
     for (auto& v : mode_ij) HYPRE_IJVectorDestroy(v);
     mode_ij.clear();
     modes.clear();
-    if (b_ij) HYPRE_IJVectorDestroy(b_ij);
-    if (x_ij) HYPRE_IJVectorDestroy(x_ij);
+    for (HYPRE_IJVector* v : {&b_ij, &x_ij, &r_ij, &p_ij, &s_ij}) {
+      if (*v) HYPRE_IJVectorDestroy(*v);
+      *v = nullptr;
+    }
     if (A_ij) HYPRE_IJMatrixDestroy(A_ij);
-    b_ij = x_ij = nullptr;
     A_ij = nullptr;
     A = nullptr;
-    b = x = nullptr;
+    b = x = r = p = s = nullptr;
   }
+
+  // A vector of the owned rows, zero, and its ParVector.
+  HYPRE_ParVector make_zero_vector(HYPRE_IJVector& v, const Eigen::VectorXd& zero) const {
+    v = make_vector();
+    set_vector(v, zero.data());
+    void* object = nullptr;
+    check_hypre(HYPRE_IJVectorGetObject(v, &object), "HYPRE_IJVectorGetObject");
+    return static_cast<HYPRE_ParVector>(object);
+  }
+
+  struct PcgResult {
+    int iterations = 0;
+    double relative_residual = 0.0;   // sqrt((r, C r) / (b, C b)) when PCG stopped
+    bool converged = false;
+    const char* breakdown = nullptr;  // why PCG stopped early, if it did
+  };
+  PcgResult pcg(double tolerance, int max_iterations, PcgProgress* progress) const;
 
   HYPRE_IJVector make_vector() const {
     HYPRE_IJVector v = nullptr;
@@ -167,6 +189,7 @@ AmgSolver::AmgSolver(AmgOptions options, const Log* log)
           "AMG relative tolerance {} is not in (0, 1)", options_.relative_tolerance);
   require(options_.max_iterations > 0, "AMG max iterations {} is not positive",
           options_.max_iterations);
+  require(!std::isnan(options_.progress_interval_s), "AMG progress interval is NaN");
   require(options_.strong_threshold > 0 && options_.strong_threshold < 1,
           "AMG strong threshold {} is not in (0, 1)", options_.strong_threshold);
   ensure_mpi_and_hypre();
@@ -290,15 +313,12 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
   check_hypre(HYPRE_IJMatrixGetObject(m.A_ij, &object), "HYPRE_IJMatrixGetObject");
   m.A = static_cast<HYPRE_ParCSRMatrix>(object);
 
-  m.b_ij = m.make_vector();
-  m.x_ij = m.make_vector();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_dof);
-  m.set_vector(m.b_ij, zero.data());
-  m.set_vector(m.x_ij, zero.data());
-  HYPRE_IJVectorGetObject(m.b_ij, &object);
-  m.b = static_cast<HYPRE_ParVector>(object);
-  HYPRE_IJVectorGetObject(m.x_ij, &object);
-  m.x = static_cast<HYPRE_ParVector>(object);
+  m.b = m.make_zero_vector(m.b_ij, zero);
+  m.x = m.make_zero_vector(m.x_ij, zero);
+  m.r = m.make_zero_vector(m.r_ij, zero);
+  m.p = m.make_zero_vector(m.p_ij, zero);
+  m.s = m.make_zero_vector(m.s_ij, zero);
 
   // BoomerAMG for 3D elasticity (see the header): systems AMG with nodal
   // coarsening, interpolation augmented by the rotations.
@@ -333,21 +353,7 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
     HYPRE_BoomerAMGSetInterpVectors(m.amg, HYPRE_Int(m.modes.size()), m.modes.data());
   }
 
-  check_hypre(HYPRE_ParCSRPCGCreate(m.comm, &m.pcg), "HYPRE_ParCSRPCGCreate");
-  HYPRE_PCGSetTol(m.pcg, options_.relative_tolerance);
-  HYPRE_PCGSetAbsoluteTol(m.pcg, 0.0);
-  HYPRE_PCGSetMaxIter(m.pcg, options_.max_iterations);
-  // Stopping test in the preconditioner's norm, (r, C r) <= tol^2 (b, C b):
-  // with C ~ K^-1 an energy-like norm. The 2-norm residual cannot go reliably
-  // below ~1e-10 in double precision here (even CHOLMOD's exact solution
-  // leaves ||K x - b|| / ||b|| ~ 1e-10 on a 20k-DoF cantilever).
-  HYPRE_PCGSetTwoNorm(m.pcg, 0);             // ||r||_2 / ||b||_2, not the preconditioned norm
-  HYPRE_PCGSetRecomputeResidual(m.pcg, 1);   // confirm convergence with the true residual
-  HYPRE_PCGSetPrintLevel(m.pcg, options_.hypre_print_level >= 3 ? 2 : 0);
-  HYPRE_PCGSetLogging(m.pcg, 1);
-  check_hypre(HYPRE_ParCSRPCGSetPrecond(m.pcg, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, m.amg),
-              "HYPRE_ParCSRPCGSetPrecond");
-  HYPRE_Int setup_code = HYPRE_ParCSRPCGSetup(m.pcg, m.A, m.b, m.x);
+  HYPRE_Int setup_code = HYPRE_BoomerAMGSetup(m.amg, m.A, m.b, m.x);
   if (setup_code != 0 && options_.rigid_body_modes && (setup_code & HYPRE_ERROR_ARG) &&
       hypre_ParAMGDataNumLevels(static_cast<hypre_ParAMGData*>(static_cast<void*>(m.amg))) > 1) {
     // hypre 2.26 leaves an argument-error flag from inside the GM
@@ -360,7 +366,7 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
     HYPRE_ClearAllErrors();
     setup_code = 0;
   }
-  check_hypre(setup_code, "HYPRE_ParCSRPCGSetup (BoomerAMG set-up)");
+  check_hypre(setup_code, "HYPRE_BoomerAMGSetup");
 
   // Hierarchy summary.
   auto* amg_data = static_cast<hypre_ParAMGData*>(static_cast<void*>(m.amg));
@@ -390,9 +396,104 @@ void AmgSolver::setup(const SymmetricUpperMatrix& K, const NodeCoordinates& node
                stats_.operator_complexity, stats_.setup_seconds);
 }
 
+// Preconditioned conjugate gradients from x = 0, step by step as hypre's
+// hypre_PCGSolve (krylov/pcg.c) with the options the hypre driver had here
+// (TwoNorm 0, RecomputeResidual 1, no absolute, residual-change or
+// convergence-factor test), so the iterates and the iteration count are
+// those of HYPRE_ParCSRPCGSolve; our own loop only so that progress can be
+// reported between iterations. C is one BoomerAMG V-cycle from zero.
+//   gamma_0 = (r_0, C r_0), r_0 = b;  p = C r_0
+//   per iteration i: s = A p, alpha = gamma / (s, p), x += alpha p,
+//     r -= alpha s, gamma = (r, C r); stop when gamma < tol^2 (b, C b),
+//     confirmed with the recomputed r = b - A x (then gamma and C r are
+//     those of the true residual, also when the check fails and PCG goes
+//     on); p = C r + (gamma / gamma_old) p.
+// A zero (s, p), or a step length or gamma that is not a positive normal
+// number, stops PCG unconverged (hypre's breakdown tests, skip_break 0).
+AmgSolver::Impl::PcgResult AmgSolver::Impl::pcg(double tolerance, int max_iterations,
+                                                PcgProgress* progress) const {
+  auto matvec = [&](double alpha, HYPRE_ParVector in, double beta, HYPRE_ParVector out) {
+    check_hypre(HYPRE_ParCSRMatrixMatvec(alpha, A, in, beta, out), "HYPRE_ParCSRMatrixMatvec");
+  };
+  auto dot = [](HYPRE_ParVector u, HYPRE_ParVector v) {  // over all ranks of the communicator
+    HYPRE_Real product = 0.0;
+    check_hypre(HYPRE_ParVectorInnerProd(u, v, &product), "HYPRE_ParVectorInnerProd");
+    return double(product);
+  };
+  auto axpy = [](double alpha, HYPRE_ParVector u, HYPRE_ParVector v) {  // v += alpha u
+    check_hypre(HYPRE_ParVectorAxpy(alpha, u, v), "HYPRE_ParVectorAxpy");
+  };
+  auto copy = [](HYPRE_ParVector from, HYPRE_ParVector to) {
+    check_hypre(HYPRE_ParVectorCopy(from, to), "HYPRE_ParVectorCopy");
+  };
+  auto precondition = [&](HYPRE_ParVector in, HYPRE_ParVector out) {  // out = C in
+    check_hypre(HYPRE_ParVectorSetConstantValues(out, 0.0), "HYPRE_ParVectorSetConstantValues");
+    check_hypre(HYPRE_BoomerAMGSolve(amg, A, in, out), "HYPRE_BoomerAMGSolve");
+  };
+  auto true_residual = [&] {  // r = b - A x
+    copy(b, r);
+    matvec(-1.0, x, 1.0, r);
+  };
+
+  precondition(b, p);
+  const double b_norm_squared = dot(p, b);  // (b, C b)
+  require(std::isfinite(b_norm_squared) && b_norm_squared > 0.0,
+          "AMG-preconditioned CG: (b, C b) = {} for a nonzero right-hand side (non-finite "
+          "input, or a preconditioner that is not positive definite)",
+          b_norm_squared);
+  const double eps = tolerance * tolerance;
+  true_residual();
+  precondition(r, p);
+  double gamma = dot(r, p);
+  require(std::isfinite(gamma), "AMG-preconditioned CG: (r, C r) = {} at the start", gamma);
+  double r_norm_squared = gamma;  // (r, C r) of the last iterate
+  PcgResult result;
+  int i = 0;
+  while (i < max_iterations) {
+    ++i;
+    matvec(1.0, p, 0.0, s);
+    const double sp = dot(s, p);
+    if (sp == 0.0) {
+      result.breakdown = "(A p, p) = 0";
+      break;
+    }
+    const double alpha = gamma / sp;
+    if (!(alpha >= HYPRE_REAL_MIN)) {
+      result.breakdown = "step length not a positive normal number";
+      break;
+    }
+    const double gamma_old = gamma;
+    axpy(alpha, p, x);
+    axpy(-alpha, s, r);
+    precondition(r, s);
+    gamma = r_norm_squared = dot(r, s);
+    bool converged = r_norm_squared / b_norm_squared < eps;
+    if (converged) {  // hypre's RecomputeResidual: only the true residual counts
+      true_residual();
+      precondition(r, s);
+      gamma = r_norm_squared = dot(r, s);
+      converged = r_norm_squared / b_norm_squared < eps;
+    }
+    if (progress) progress->iteration(i, std::sqrt(r_norm_squared / b_norm_squared));
+    if (converged) {
+      result.converged = true;
+      break;
+    }
+    if (!(gamma >= HYPRE_REAL_MIN)) {
+      result.breakdown = "(r, C r) not a positive normal number";
+      break;
+    }
+    check_hypre(HYPRE_ParVectorScale(gamma / gamma_old, p), "HYPRE_ParVectorScale");
+    axpy(1.0, s, p);
+  }
+  result.iterations = i;
+  result.relative_residual = std::sqrt(r_norm_squared / b_norm_squared);
+  return result;
+}
+
 Eigen::MatrixXd AmgSolver::solve(const Eigen::MatrixXd& rhs) {
   Impl& m = *impl_;
-  require(m.pcg != nullptr, "AMG solve called before setup");
+  require(m.amg != nullptr, "AMG solve called before setup");
   const SymmetricUpperMatrix& K = *m.matrix;
   require(rhs.rows() == K.rows(), "AMG: right-hand side has {} rows, K_ff {}", rhs.rows(),
           K.rows());
@@ -405,7 +506,9 @@ Eigen::MatrixXd AmgSolver::solve(const Eigen::MatrixXd& rhs) {
   Eigen::VectorXd full(n_dof), local(m.last_row - m.first_row);
   std::vector<HYPRE_BigInt> rows(static_cast<size_t>(m.last_row - m.first_row));
   std::iota(rows.begin(), rows.end(), HYPRE_BigInt(m.first_row));
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_dof);
+  // Progress lines on the rank that prints (the residuals are global).
+  std::optional<PcgProgress> progress;
+  if (log_ && m.rank == 0) progress.emplace(*log_, options_.progress_interval_s);
   for (Index k = 0; k < cases; ++k) {
     Stopwatch clock;
     const double b_norm = rhs.col(k).norm();
@@ -418,20 +521,20 @@ Eigen::MatrixXd AmgSolver::solve(const Eigen::MatrixXd& rhs) {
       full[d] = eq >= 0 ? rhs(eq, k) : 0.0;
     }
     m.set_vector(m.b_ij, full.data());
-    m.set_vector(m.x_ij, zero.data());
-    const HYPRE_Int code = HYPRE_ParCSRPCGSolve(m.pcg, m.A, m.b, m.x);
-    HYPRE_Int iterations = 0;
-    HYPRE_Real hypre_residual = 0.0;
-    HYPRE_PCGGetNumIterations(m.pcg, &iterations);
-    HYPRE_PCGGetFinalRelativeResidualNorm(m.pcg, &hypre_residual);
-    if (code & HYPRE_ERROR_CONV) {
-      HYPRE_ClearAllErrors();
+    check_hypre(HYPRE_ParVectorSetConstantValues(m.x, 0.0), "HYPRE_ParVectorSetConstantValues");
+    if (progress)
+      progress->start(fmt::format("AMG-PCG column {}/{}", k + 1, cases),
+                      options_.relative_tolerance);
+    const Impl::PcgResult outcome = m.pcg(options_.relative_tolerance, options_.max_iterations,
+                                          progress ? &*progress : nullptr);
+    const int iterations = outcome.iterations;
+    if (!outcome.converged)
       fail("AMG-preconditioned CG did not converge for right-hand side {} of {}: relative "
-           "residual {:.3g} after {} iterations (tolerance {:.3g}); raise max_iterations or use "
+           "residual {:.3g} after {} iterations{} (tolerance {:.3g}); raise max_iterations or use "
            "the direct solver",
-           k, cases, hypre_residual, int(iterations), options_.relative_tolerance);
-    }
-    check_hypre(code, "HYPRE_ParCSRPCGSolve");
+           k, cases, outcome.relative_residual, iterations,
+           outcome.breakdown ? fmt::format(", stopped by a breakdown: {}", outcome.breakdown) : "",
+           options_.relative_tolerance);
     check_hypre(HYPRE_IJVectorGetValues(m.x_ij, HYPRE_Int(rows.size()), rows.data(), local.data()),
                 "HYPRE_IJVectorGetValues");
     MPI_Allgatherv(local.data(), int(local.size()), MPI_DOUBLE, full.data(), m.rows_of_rank.data(),
@@ -447,8 +550,8 @@ Eigen::MatrixXd AmgSolver::solve(const Eigen::MatrixXd& rhs) {
     require(std::isfinite(relative) && relative <= options_.max_relative_residual,
             "AMG-preconditioned CG: right-hand side {} of {} ended with relative residual {:.3g} "
             "after {} iterations, above the {:.3g} allowed",
-            k, cases, relative, int(iterations), options_.max_relative_residual);
-    stats_.iterations[size_t(k)] = int(iterations);
+            k, cases, relative, iterations, options_.max_relative_residual);
+    stats_.iterations[size_t(k)] = iterations;
     stats_.relative_residuals[size_t(k)] = relative;
     stats_.solve_seconds[size_t(k)] = clock.seconds();
   }

@@ -1,5 +1,7 @@
 #include "kinetofem/structure/assembly_over_motion.hpp"
 
+#include "rigid_motion.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +15,8 @@
 
 namespace kinetofem::structure {
 
+using detail::world_position;
+
 namespace {
 constexpr size_t kMinSuperposedPoses = 64;  // see analyse_assembly_over_motion
 }  // namespace
@@ -20,15 +24,6 @@ constexpr size_t kMinSuperposedPoses = 64;  // see analyse_assembly_over_motion
 namespace {
 
 constexpr size_t kPosesPerBlock = 32;  // fields of one block in memory at a time
-
-// World coordinates of a part's nodes in the rigid configuration of a frame.
-post::FieldMatrix world_position(const fem::Mesh& mesh, const mech::BodyFrame& body) {
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(body.q.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Vector3d origin(body.q.x(), body.q.y(), 0.0);
-  post::FieldMatrix X(mesh.node_count(), 3);
-  for (fem::Index i = 0; i < mesh.node_count(); ++i) X.row(i) = (R * mesh.nodes.row(i).transpose() + origin).transpose();
-  return X;
-}
 
 int body_index(const mech::MultibodyModel& model, const std::string& name) {
   for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -234,6 +229,7 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
   }
 
   writer.write_history(post::layout::kAssemblyMaxDisplacement, "m", max_u);
+  for (size_t i = 0; i < P; ++i) summary.points[i].displacement_history_m = point_u[i];
   for (size_t i = 0; i < P; ++i) {
     const std::string base = post::layout::kAssemblyPointPrefix + options.points[i].name;
     writer.write_history(base + ".displacement", "m", point_u[i], post::kVectorComponents);

@@ -23,6 +23,7 @@ namespace kinetofem::structure {
 namespace {
 
 using detail::Matrix6d;
+using detail::rotate6;
 using detail::skew;
 using detail::solve_columns;
 using detail::transfer;
@@ -34,13 +35,6 @@ Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Vector3d::
 Vector3d lift(const Vector2d& v, double z = 0.0) { return Vector3d(v.x(), v.y(), z); }
 
 double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-Matrix6d rotate6(const Eigen::Matrix3d& R) {
-  Matrix6d Q = Matrix6d::Zero();
-  Q.block<3, 3>(0, 0) = R;
-  Q.block<3, 3>(3, 3) = R;
-  return Q;
-}
 
 const char* const kComponent[6] = {"x", "y", "z", "rx", "ry", "rz"};
 
@@ -286,6 +280,31 @@ struct ElasticAssembly::Impl {
       return int(cols.size()) - int(qr.rank());
     };
     return {degree(true), degree(false)};
+  }
+
+  // Spring members (chains, compliant drives: elongation or twist = g u) and
+  // the constraint rows C (6M columns) of a pose.
+  struct ChainPose {
+    double k = 0, b = 0;
+    Vector3d T, n;
+    Eigen::Matrix<double, 1, 6> g;  // elongation = g u_roller
+  };
+  struct PoseMembers {
+    Eigen::MatrixXd S;
+    std::vector<Eigen::RowVectorXd> rows;
+    std::vector<bool> row_rotation, row_in_plane;
+    std::vector<std::string> row_owner;
+    std::vector<Eigen::RowVectorXd> spring_g;
+    std::vector<double> spring_k;
+    std::vector<std::string> spring_name;
+    std::vector<ChainPose> chain_pose;  // per joint (chains only)
+    double max_compliance = 0.0;        // largest translational compliance of a spring member, m/N
+  };
+  PoseMembers members_of(const mech::Frame& frame, const Pose& pose) const;
+  const PartData& part_of(const std::string& body) const {
+    for (const auto& p : parts)
+      if (p->body == body) return *p;
+    fail("elastic assembly: body '{}' has no elastic part", body);
   }
 
   // coefficients: per part, its load patterns' coefficients at the frame
@@ -624,36 +643,29 @@ void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
   part.superposed = true;
 }
 
-PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
-                                               const std::vector<Eigen::VectorXd>& interface_load_displacement,
-                                               const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
-  Stopwatch clock;
-  const Pose pose = pose_of(frame);
-  const int M = int(interfaces.size()), B = moving_count;
+ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech::Frame& frame,
+                                                                    const Pose& pose) const {
+  const int M = int(interfaces.size());
   const double Lr = length_scale;
-
-  // Springs S (chains, compliant drives) and constraint rows C (6M columns).
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(6 * M, 6 * M);
-  std::vector<Eigen::RowVectorXd> rows;
-  std::vector<bool> row_rotation, row_in_plane;
-  std::vector<std::string> row_owner;
+  PoseMembers out;
+  out.S = Eigen::MatrixXd::Zero(6 * M, 6 * M);
+  Eigen::MatrixXd& S = out.S;
+  auto& rows = out.rows;
+  auto& row_rotation = out.row_rotation;
+  auto& row_in_plane = out.row_in_plane;
+  auto& row_owner = out.row_owner;
   auto add_row = [&](const Eigen::RowVectorXd& r, int component, const std::string& owner) {
     rows.push_back(r);
     row_rotation.push_back(component >= 3);
     row_in_plane.push_back(component == 0 || component == 1 || component == 5);
     row_owner.push_back(owner);
   };
-  // Spring members (chains, compliant drives): elongation or twist = g u.
-  std::vector<Eigen::RowVectorXd> spring_g;
-  std::vector<double> spring_k;
-  std::vector<std::string> spring_name;
-  struct ChainPose {
-    double k = 0, b = 0;
-    Vector3d T, n;
-    Eigen::Matrix<double, 1, 6> g;  // elongation = g u_roller
-  };
-  std::vector<ChainPose> chain_pose(joints.size());
-  double max_compliance = 0.0;
+  auto& spring_g = out.spring_g;
+  auto& spring_k = out.spring_k;
+  auto& spring_name = out.spring_name;
+  auto& chain_pose = out.chain_pose;
+  chain_pose.resize(joints.size());
+  double& max_compliance = out.max_compliance;
   for (size_t j = 0; j < joints.size(); ++j) {
     const JointData& jd = joints[j];
     const mech::Joint& joint = model.joints[size_t(jd.joint)];
@@ -705,6 +717,29 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
       spring_name.push_back("drive." + name);
     }
   }
+  return out;
+}
+
+PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
+                                               const std::vector<Eigen::VectorXd>& interface_load_displacement,
+                                               const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
+  Stopwatch clock;
+  const Pose pose = pose_of(frame);
+  const int M = int(interfaces.size()), B = moving_count;
+  const double Lr = length_scale;
+
+  // Springs S (chains, compliant drives) and constraint rows C (6M columns).
+  const PoseMembers members = members_of(frame, pose);
+  const Eigen::MatrixXd& S = members.S;
+  const auto& rows = members.rows;
+  const auto& row_rotation = members.row_rotation;
+  const auto& row_in_plane = members.row_in_plane;
+  const auto& row_owner = members.row_owner;
+  const auto& spring_g = members.spring_g;
+  const auto& spring_k = members.spring_k;
+  const auto& spring_name = members.spring_name;
+  const auto& chain_pose = members.chain_pose;
+  double max_compliance = members.max_compliance;
   const int nc = int(rows.size());
   const int ou = 0, ol = 6 * M, oa = 12 * M, om = 12 * M + 6 * B, n = om + nc;
 
@@ -1159,6 +1194,51 @@ std::vector<InterfaceInfo> ElasticAssembly::interfaces() const {
     info.elastic = i.part >= 0;
     out.push_back(info);
   }
+  return out;
+}
+
+InterfaceStructure ElasticAssembly::interface_structure(const mech::Frame& frame) const {
+  const Impl& im = *impl_;
+  im.check_frame(frame);
+  const Impl::Pose pose = im.pose_of(frame);
+  const Impl::PoseMembers members = im.members_of(frame, pose);
+  InterfaceStructure out;
+  out.body_rotation = pose.R;
+  out.interface_arm_m = pose.arm;
+  out.constraints.resize(Eigen::Index(members.rows.size()), 6 * Eigen::Index(im.interfaces.size()));
+  for (size_t r = 0; r < members.rows.size(); ++r) out.constraints.row(Eigen::Index(r)) = members.rows[r];
+  out.constraint_owner = members.row_owner;
+  out.springs = members.S;
+  return out;
+}
+
+const Eigen::MatrixXd& ElasticAssembly::interface_columns(const std::string& body) const {
+  const Impl::PartData& part = impl_->part_of(body);
+  require(!part.rigid,
+          "{}: the interface columns of rigid-bore couplings are not the couplings' motion; the modes of the "
+          "assembly need assembly.coupling = \"distributing\"",
+          part.label);
+  return part.G;
+}
+
+fem::LinearStaticAnalysis& ElasticAssembly::supported_analysis(const std::string& body) const {
+  return *impl_->part_of(body).analysis;
+}
+
+const loads::LinkLoads& ElasticAssembly::part_loads(const std::string& body) const {
+  return *impl_->part_of(body).loads;
+}
+
+std::vector<Vector6d> ElasticAssembly::body_loads(const mech::Frame& frame) const {
+  const Impl& im = *impl_;
+  im.check_frame(frame);
+  const std::vector<Vector3d> applied = im.system->applied_loads(frame.q, frame.q_dot, frame.t);
+  std::vector<Vector6d> out;
+  for (size_t b = 0; b < im.model.bodies.size(); ++b)
+    if (!im.ground(int(b))) {
+      double scale = 0.0;
+      out.push_back(im.multibody_resultant(frame, applied, int(b), scale));
+    }
   return out;
 }
 

@@ -1,10 +1,16 @@
 #pragma once
 // Small helpers shared by the condensations of structure/ (private header):
-// the rigid transfer of a 6-component motion and the block solve of
-// K_s^-1 B as columns. SI units.
+// the rigid transfer and rotation of a 6-component motion, the world
+// position of a part's nodes, and the block solve of K_s^-1 B as columns.
+// SI units.
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
+#include "kinetofem/solver/mesh.hpp"
 
 #include "kinetofem/solver/static_analysis.hpp"
 
@@ -25,6 +31,23 @@ inline Matrix6d transfer(const Eigen::Vector3d& arm) {
   Matrix6d T = Matrix6d::Identity();
   T.block<3, 3>(0, 3) = -skew(arm);
   return T;
+}
+
+// The 6 x 6 rotation of a (translation, rotation) pair: blockdiag(R, R).
+inline Matrix6d rotate6(const Eigen::Matrix3d& R) {
+  Matrix6d Q = Matrix6d::Zero();
+  Q.block<3, 3>(0, 0) = R;
+  Q.block<3, 3>(3, 3) = R;
+  return Q;
+}
+
+// World coordinates of a part's nodes in the rigid configuration of a frame.
+inline post::FieldMatrix world_position(const fem::Mesh& mesh, const mech::BodyFrame& body) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(body.q.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d origin(body.q.x(), body.q.y(), 0.0);
+  post::FieldMatrix X(mesh.node_count(), 3);
+  for (fem::Index i = 0; i < mesh.node_count(); ++i) X.row(i) = (R * mesh.nodes.row(i).transpose() + origin).transpose();
+  return X;
 }
 
 // Columns of K_s^-1 B as 3 N vectors (one block solve).

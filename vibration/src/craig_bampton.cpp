@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <numbers>
@@ -225,8 +226,8 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
                          fem::LinearStaticAnalysis* supported) {
   const Stopwatch clock;
   const std::string& label = options.eigen.label;
-  require(options.highest_frequency_of_interest_hz > 0 &&
-              std::isfinite(options.highest_frequency_of_interest_hz),
+  require(!options.fixed_interface_modes || (options.highest_frequency_of_interest_hz > 0 &&
+                                             std::isfinite(options.highest_frequency_of_interest_hz)),
           "Craig-Bampton reduction of '{}': highest frequency of interest {} Hz must be positive",
           label, options.highest_frequency_of_interest_hz);
   require(options.cutoff_factor >= 1 && std::isfinite(options.cutoff_factor),
@@ -344,25 +345,32 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
     ops.start = solver.fixed_interface_inverse(MatrixXd(Mu * v)).col(0);  // inside G^T u = 0
   }
   const Index interior = n - nb - R.cols();  // dimension of the fixed-interface space (<=)
-  fem::EigenOptions eigen = options.eigen;
-  eigen.modes = int(std::min<Index>(options.first_batch, interior - 1));
-  fem::EigenSolution modes;
-  for (;;) {
-    modes = fem::solve_eigen(ops, eigen, nullptr);
-    const double highest = modes.frequency_hz[modes.frequency_hz.size() - 1];
-    if (highest > out.cutoff_hz) break;
-    require(eigen.modes < options.max_modes && eigen.modes < interior - 1,
-            "Craig-Bampton reduction of '{}': {} fixed-interface modes lie below the cutoff "
-            "{:.4g} Hz (max modes {}): raise max_modes or lower the cutoff",
-            label, eigen.modes, out.cutoff_hz, options.max_modes);
-    eigen.modes = int(std::min<Index>({2 * Index(eigen.modes), Index(options.max_modes), interior - 1}));
-  }
   Index kept = 0;
-  while (kept < modes.frequency_hz.size() && modes.frequency_hz[kept] <= out.cutoff_hz) ++kept;
-  out.first_dropped_hz = modes.frequency_hz[kept];
+  if (options.fixed_interface_modes) {
+    fem::EigenOptions eigen = options.eigen;
+    eigen.modes = int(std::min<Index>(options.first_batch, interior - 1));
+    fem::EigenSolution modes;
+    for (;;) {
+      modes = fem::solve_eigen(ops, eigen, nullptr);
+      const double highest = modes.frequency_hz[modes.frequency_hz.size() - 1];
+      if (highest > out.cutoff_hz) break;
+      require(eigen.modes < options.max_modes && eigen.modes < interior - 1,
+              "Craig-Bampton reduction of '{}': {} fixed-interface modes lie below the cutoff "
+              "{:.4g} Hz (max modes {}): raise max_modes or lower the cutoff",
+              label, eigen.modes, out.cutoff_hz, options.max_modes);
+      eigen.modes = int(std::min<Index>({2 * Index(eigen.modes), Index(options.max_modes), interior - 1}));
+    }
+    while (kept < modes.frequency_hz.size() && modes.frequency_hz[kept] <= out.cutoff_hz) ++kept;
+    out.first_dropped_hz = modes.frequency_hz[kept];
+    out.normal_modes = modes.modes.leftCols(kept);
+    out.normal_frequency_hz = modes.frequency_hz.head(kept);
+  } else {
+    out.cutoff_hz = 0.0;
+    out.first_dropped_hz = std::numeric_limits<double>::quiet_NaN();
+    out.normal_modes.resize(n, 0);
+    out.normal_frequency_hz.resize(0);
+  }
   out.mode_count = kept;
-  out.normal_modes = modes.modes.leftCols(kept);
-  out.normal_frequency_hz = modes.frequency_hz.head(kept);
 
   // Residual vectors: the fixed-interface static response to the constraint
   // modes' inertia, less its part in the kept modes (header), M-orthonormal
@@ -462,7 +470,10 @@ std::string format_check(const CraigBamptonModel& m) {
       m.boundary_count + m.mode_count + m.residual_count, m.boundary_count,
       m.interface_names.size(), m.mode_count, m.residual_count, m.factor_nonzeros,
       m.lanczos_solves, m.seconds);
-  text += fmt::format(
+  if (std::isnan(m.first_dropped_hz))
+    text += "  static reduction: constraint modes and residual vectors, no fixed-interface modes\n";
+  else
+    text += fmt::format(
       "  part-mode rule: keep fixed-interface modes up to the cutoff {:.5g} Hz; kept {} "
       "({:.5g} .. {:.5g} Hz), first dropped {:.5g} Hz ({:.2f} x cutoff: the rule {})\n",
       m.cutoff_hz, m.mode_count, m.mode_count ? m.normal_frequency_hz[0] : 0.0,

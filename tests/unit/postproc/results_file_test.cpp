@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -594,6 +595,84 @@ TEST(ResultsFile, ReaderErrorsNameWhatIsMissing) {
   std::ofstream(dir / "not_hdf5.h5") << "plain text";
   EXPECT_THROW(ResultsFile::open(dir / "not_hdf5.h5"), Error);
   EXPECT_THROW(ResultsFile::open(dir / "absent.h5"), Error);
+}
+
+
+// Tables (/tables/<name>): any size, not tied to the mechanism time grid, not in the XDMF file.
+TEST(ResultsFile, TablesOfAnySizeRoundTripWithUnitsAndComponents) {
+  TemporaryDirectory dir;
+  {
+    ResultsWriter writer(dir / "tables.h5", test_provenance());
+    writer.set_mechanism_time({0.0, 0.5, 1.0});  // tables need no grid; this one is 3 long
+    FieldMatrix time(7, 1), displacement(7, 3), scalar(1, 1);
+    for (int k = 0; k < 7; ++k) {
+      time(k, 0) = 0.25 * k;
+      displacement.row(k) << 1e-3 * k, -2e-3 * k, 0.5e-3;
+    }
+    scalar(0, 0) = std::numeric_limits<double>::infinity();  // e.g. a settling time that never comes
+    writer.write_table("response.time", "s", time);
+    writer.write_table("response.point.H.displacement", "m", displacement, kVectorComponents);
+    writer.write_table("point.H.settling_time", "s", scalar);
+    writer.write_table("empty", "m", FieldMatrix(0, 2));
+    writer.commit();
+  }
+  const ResultsFile file = ResultsFile::open(dir / "tables.h5");
+  EXPECT_EQ(file.format_version(), kFormatVersion);
+  EXPECT_EQ(file.tables(), (std::vector<std::string>{"empty", "point.H.settling_time", "response.point.H.displacement",
+                                                     "response.time"}));
+  const FieldData time = file.read_table("response.time");
+  EXPECT_EQ(time.values.rows(), 7);
+  EXPECT_EQ(time.values(6, 0), 1.5);
+  EXPECT_EQ(time.units, "s");
+  EXPECT_TRUE(time.component_names.empty());
+  const FieldData u = file.read_table("response.point.H.displacement");
+  EXPECT_EQ(u.values.rows(), 7);
+  EXPECT_EQ(u.values(3, 1), -6e-3);
+  EXPECT_EQ(u.component_names, kVectorComponents);
+  EXPECT_EQ(file.read_table("point.H.settling_time").values(0, 0), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(file.read_table("empty").values.rows(), 0);
+  EXPECT_EQ(file.units_of("/tables/response.time"), "s");
+  EXPECT_EQ(file.histories(), std::vector<std::string>{});  // tables are not histories
+  EXPECT_EQ(read_text(dir / "tables.xdmf").find("/tables/"), std::string::npos);
+}
+
+TEST(ResultsFile, FileWithoutTablesListsNone) {
+  TemporaryDirectory dir;
+  WrittenRun().write(dir / "run.h5");
+  EXPECT_TRUE(ResultsFile::open(dir / "run.h5").tables().empty());
+}
+
+std::string error_text(const auto& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return "";
+}
+
+TEST(ResultsFile, BadTableCallsAreErrorsNamingTheTable) {
+  TemporaryDirectory dir;
+  ResultsWriter writer(dir / "bad.h5", test_provenance());
+  const FieldMatrix one = FieldMatrix::Constant(1, 1, 2.0);
+  writer.write_table("stop_time", "s", one);
+  std::string m = error_text([&] { writer.write_table("stop_time", "s", one); });
+  EXPECT_NE(m.find("table 'stop_time' is already written"), std::string::npos) << m;
+  m = error_text([&] { writer.write_table("a/b", "s", one); });
+  EXPECT_NE(m.find("table name 'a/b' is not allowed"), std::string::npos) << m;
+  m = error_text([&] { writer.write_table("u", "m", FieldMatrix(FieldMatrix::Zero(4, 3)), {"x", "y"}); });
+  EXPECT_NE(m.find("'u' has 3 columns but 2 component names"), std::string::npos) << m;
+  m = error_text([&] { writer.write_table("nothing", "m", FieldMatrix(4, 0)); });
+  EXPECT_NE(m.find("table 'nothing' has no columns"), std::string::npos) << m;
+  writer.commit();  // the refused calls left the file usable
+
+  const ResultsFile file = ResultsFile::open(dir / "bad.h5");
+  EXPECT_EQ(file.tables(), std::vector<std::string>{"stop_time"});
+  m = error_text([&] { file.read_table("settling_time"); });
+  EXPECT_NE(m.find((dir / "bad.h5").string()), std::string::npos) << m;
+  EXPECT_NE(m.find("no table 'settling_time'"), std::string::npos) << m;
+  EXPECT_NE(m.find("present: stop_time"), std::string::npos) << m;
 }
 
 }  // namespace

@@ -34,6 +34,7 @@
 #include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/structure/assembly_over_motion.hpp"
+#include "kinetofem/structure/vibration_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -53,6 +54,7 @@ struct LinkageRun {
   double max_abs_drive_effort = 0.0;                           // over all drives (N m or N)
   std::vector<pipeline::PartSummary> parts;                    // one per [[part]]: stress over the motion
   std::optional<structure::AssemblySummary> assembly;          // assembly.enabled
+  std::optional<structure::VibrationSummary> vibration;  // vibration.enabled
   std::vector<pipeline::PartFatigue> fatigue;                  // fatigue.enabled: one per [[part]]
 };
 

@@ -17,6 +17,7 @@
 #include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/structure/assembly_over_motion.hpp"
+#include "kinetofem/structure/vibration_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -33,6 +34,7 @@ struct ManipulatorSummary {
   double max_drive_torque_nm = 0, min_chain_tension_n = 0, max_chain_tension_n = 0;
   // The elastic assembly (assembly.enabled): total deformation, H's deflection.
   std::optional<structure::AssemblySummary> assembly;
+  std::optional<structure::VibrationSummary> vibration;  // vibration.enabled
   std::vector<pipeline::PartFatigue> fatigue;  // fatigue.enabled: one per link
   std::filesystem::path results_file;
   double meshing_seconds = 0, dynamics_seconds = 0, total_seconds = 0;

@@ -20,6 +20,9 @@
 //     8. analyse_assembly_over_motion  the linkage as one elastic structure
 //                                      (when asked): total deformation, the
 //                                      tracked points' deflection and split
+//        analyse_vibration_over_motion the assembly's modes in every pose and
+//                                      the tracked points' vibration (when
+//                                      asked; needs step 8)
 //     9. commit the results file       atomically (.h5 + .xdmf)
 // A linkage without parts runs steps 1, 4, 5, 7 and 9.
 //
@@ -43,6 +46,7 @@
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 #include "kinetofem/structure/assembly_over_motion.hpp"
+#include "kinetofem/structure/vibration_over_motion.hpp"
 
 namespace kinetofem::driver {
 
@@ -67,6 +71,8 @@ struct MotionStressCase {
   // The elastic assembly (step 8); empty: not run. Its chains' EA, drives'
   // stiffness and points (e.g. the gripper point H with its face set).
   std::optional<structure::AssemblyOptions> assembly;
+  // The vibration over the motion (after step 8, which it needs); empty: not run.
+  std::optional<structure::VibrationOptions> vibration;
   // The fatigue check of every part over the work cycle (after step 6);
   // empty: not run.
   std::optional<pipeline::FatigueSettings> fatigue;
@@ -80,6 +86,7 @@ struct MotionStressRun {
   std::optional<mech::Frame> static_pose;
   std::vector<PartSummary> parts;
   std::optional<structure::AssemblySummary> assembly;
+  std::optional<structure::VibrationSummary> vibration;  // when c.vibration
   std::vector<pipeline::PartFatigue> fatigue;  // per part, when c.fatigue
   pipeline::PartFactorizationReport factorization;  // side by side or one after the other, and why
   std::filesystem::path results_file;

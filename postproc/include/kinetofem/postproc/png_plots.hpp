@@ -43,6 +43,24 @@
 //    each contribution assembly.point.<P>.from.<contributor> as its component
 //    along the total's direction at each time, c_i . u/|u| (0 where u = 0),
 //    so the lines add up to |u| (drawn dashed with them).
+// 6. write_frequency_picture — the m lowest natural frequencies of the
+//    manipulator over the motion (history vibration.frequency, Hz against t
+//    in s; vibration_results.hpp), one line per mode ("mode k"), 0 Hz
+//    included; the static pose study's frequencies (table
+//    vibration.static_frequency, when there) as short ticks in the modes'
+//    colours just right of the panel, labelled "static pose"; the lowest
+//    value of mode 1 marked with its value and time.
+// 7. write_point_vibration_picture — a tracked point's elastic displacement
+//    |u| in mm over the motion and the settling window after the stop (table
+//    vibration.response.time): with the vibration solid, quasi-static dashed,
+//    the stop as a vertical line, the peak over the stroke marked; below,
+//    after the stop, the deviation |u(t) - u_rest| from the rest position
+//    (the quasi-static u at the end, from which the settling time is
+//    measured) in mm on a LOG scale (values below the panel's lowest decade
+//    drawn at its bottom edge), the settling tolerance as a horizontal dashed
+//    line and the settling time as a vertical line ("does not settle" when
+//    it is inf). Title: the case, the point, the dynamic amplification and,
+//    where the file has it (vibration.damping_ratio), the modal damping.
 //
 // Every function throws Error naming the file or the missing data.
 #include <filesystem>
@@ -141,5 +159,30 @@ struct PointDeflectionInfo {
 PointDeflectionInfo write_point_deflection_picture(const ResultsFile& results, const std::filesystem::path& png,
                                                    const std::string& point = "H",
                                                    const PictureOptions& options = {});
+
+struct FrequencyPictureInfo {
+  double lowest_first_hz;      // lowest frequency of mode 1 over the motion, Hz
+  double lowest_first_time_s;  // when (first on a tie)
+  double highest_first_hz;     // highest frequency of mode 1 over the motion, Hz
+  int modes;                   // m, the lines drawn
+  double static_first_hz;      // mode 1 in the static pose study; NaN: the file has none
+};
+
+// Throws Error naming the file if it has no history vibration.frequency (or a misshapen one).
+FrequencyPictureInfo write_frequency_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                             const PictureOptions& options = {});
+
+struct PointVibrationPictureInfo {
+  double peak_dynamic_m;         // largest |u| with the vibration over the stroke, m
+  double peak_quasi_static_m;    // largest quasi-static |u| over the stroke, m
+  double dynamic_amplification;  // from the file (peak_dynamic_m / peak_quasi_static_m)
+  double settling_time_s;        // after the stop; +inf: does not settle
+};
+
+// Throws Error naming the file and the missing table (and the points that have a
+// response) if any table of the point's response is missing or misshapen.
+PointVibrationPictureInfo write_point_vibration_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                                        const std::string& point = "H",
+                                                        const PictureOptions& options = {});
 
 }  // namespace kinetofem::post

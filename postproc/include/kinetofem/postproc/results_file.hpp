@@ -79,6 +79,11 @@ class ResultsFile {
   std::vector<std::string> histories() const;
   FieldData read_history(const std::string& name) const;  // T_m x c
 
+  // Tables (/tables/<name>, ResultsWriter::write_table): any rows x c. An absent table is an
+  // Error naming the file, the table and the tables present.
+  std::vector<std::string> tables() const;  // empty: none (or an older file)
+  FieldData read_table(const std::string& name) const;
+
   // Absolute paths of every dataset in the file, and the `units` attribute of one.
   std::vector<std::string> datasets() const;
   // Any 1-D or 2-D integer dataset by absolute path (e.g. .../connectivity_vtk), rows x columns.

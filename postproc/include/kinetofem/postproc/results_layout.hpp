@@ -22,6 +22,7 @@
 //   /bodies/<body>/envelopes/<field>/value, /step      (N, c), step: index into series/time
 //   /mechanism/time                                    (T_m)    s
 //   /mechanism/<quantity>                              (T_m, c)
+//   /tables/<name>                                     (rows, c) any size; attrs units, components
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -68,6 +69,8 @@ inline constexpr const char* kEnvelopes = "envelopes";
 inline constexpr const char* kEnvelopeValue = "value";
 inline constexpr const char* kEnvelopeStep = "step";
 inline constexpr const char* kMechanism = "mechanism";
+// Tables of any size (ResultsWriter::write_table); optional, an addition to format version 1.
+inline constexpr const char* kTables = "tables";
 // Unit-load superposition of a body's motion (load_patterns.hpp).
 inline constexpr const char* kLoadPatterns = "load_patterns";
 inline constexpr const char* kPatternNames = "names";  // attribute of the group
@@ -84,6 +87,22 @@ inline constexpr const char* kXdmfGeometry = "xdmf_geometry";
 inline constexpr const char* kAssemblyBodyPrefix = "assembly.";
 inline constexpr const char* kAssemblyPointPrefix = "assembly.point.";      // + <P>.displacement, ...
 inline constexpr const char* kAssemblyMaxDisplacement = "assembly.max_displacement";
+
+// The vibration of the manipulator over the motion (structure/vibration_over_motion.hpp,
+// docs/results.md): bodies "vibration.static.<b>", "vibration.lowest.<b>" (mode shapes, their
+// series "time" the mode number 1..m), the history kVibrationFrequency (T_m x m, Hz) and tables.
+inline constexpr const char* kVibrationBodyPrefix = "vibration.";
+inline constexpr const char* kVibrationFrequency = "vibration.frequency";                // history, Hz
+inline constexpr const char* kVibrationStaticFrequency = "vibration.static_frequency";   // table m x 1, Hz
+inline constexpr const char* kVibrationResponseTime = "vibration.response.time";         // table n x 1, s
+inline constexpr const char* kVibrationStopTime = "vibration.response.stop_time";        // table 1 x 1, s
+// Tables + <P>.displacement, <P>.quasi_static (n x 3, m, world axes).
+inline constexpr const char* kVibrationResponsePointPrefix = "vibration.response.point.";
+// Tables (1 x 1) + <P>.settling_time (s after the stop, may be inf), .settling_tolerance (m),
+// .amplitude_at_stop (m), .dynamic_amplification (1).
+inline constexpr const char* kVibrationPointPrefix = "vibration.point.";
+// Optional table (1 x 1, 1): the modal damping ratio zeta of the response.
+inline constexpr const char* kVibrationDampingRatio = "vibration.damping_ratio";
 
 // The fatigue check (pipeline/part_fatigue.hpp): static nodal fields of each
 // part's body (docs/results.md).

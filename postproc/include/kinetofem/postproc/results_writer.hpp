@@ -34,9 +34,10 @@
 //   lever.write_envelope("von_mises", "Pa", vm_max, vm_max_step);
 //   writer.set_mechanism_time(t_mech);
 //   writer.write_history("drive_torque", "N*m", torque);  // (T_m x 1)
+//   writer.write_table("vibration.response.time", "s", t_response);  // (n x 1), any n
 //   writer.commit();
 //
-// Names of bodies, fields, sets and histories: letters, digits, '_', '-', '.'
+// Names of bodies, fields, sets, histories and tables: letters, digits, '_', '-', '.'
 // (they become HDF5 link names and XDMF attribute names).
 #include <filesystem>
 #include <initializer_list>
@@ -161,6 +162,14 @@ class ResultsWriter {
   void write_history(const std::string& name, const std::string& units,
                      const Eigen::Ref<const FieldMatrix>& values,
                      const std::vector<std::string>& component_names = {});
+
+  // A table of any size (rows x c) at /tables/<name>, e.g. a history on its own time grid
+  // (its time is another table) or a few scalars. Not in the XDMF file.
+  // Error naming the table for a bad name, a second table of that name, no columns, or a
+  // count of component names other than c. Values may be non-finite (a settling time of +inf).
+  void write_table(const std::string& name, const std::string& units,
+                   const Eigen::Ref<const FieldMatrix>& values,
+                   const std::vector<std::string>& component_names = {});
 
   // Finishes the file and the XDMF and moves them to their final names.
   // Throws if a time step is incomplete; after commit() nothing more can be written.

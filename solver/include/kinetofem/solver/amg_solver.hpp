@@ -1,7 +1,7 @@
 #pragma once
 // AmgSolver — iterative solver of K u = f for models whose Cholesky factor
-// does not fit in memory: conjugate gradients (hypre PCG) preconditioned by
-// one V-cycle of algebraic multigrid (hypre BoomerAMG) for 3D elasticity:
+// does not fit in memory: conjugate gradients preconditioned by one V-cycle of
+// algebraic multigrid (hypre BoomerAMG) for 3D elasticity:
 // nodal systems AMG, which interpolates the rigid translations exactly, and
 // optionally the rigid rotations as interpolation vectors.
 //
@@ -25,9 +25,21 @@
 //     to 4.8 and the time per solve from 7.6 s to 25 s (hypre 2.26, 1 core),
 //   - l1-Gauss-Seidel smoothing (symmetric for PCG), one sweep up and down.
 // The hierarchy is set up once in setup(); solve() runs PCG for each column
-// of the right-hand side block with it.
+// of the right-hand side block with it. The PCG loop is our own, on hypre's
+// ParCSR matrix-vector product and ParVector operations, step for step the
+// one of hypre_PCGSolve (HYPRE_ParCSRPCGSolve with TwoNorm 0 and
+// RecomputeResidual 1, which it replaces: same iterates, same iteration
+// counts), so that it can report progress between iterations.
 //
-// Convergence: PCG stops when (r, C r) <= relative_tolerance^2 (b, C b), C the
+// Progress: a right-hand side that has been iterating for longer than
+// AmgOptions::progress_interval_s prints a line through the Log at most every
+// progress_interval_s (PcgProgress, pcg_progress.hpp), on rank 0:
+//   AMG-PCG column 3/37: iteration 80, relative residual 3.2e-06 (target 1e-08), ~45 s left
+// the relative residual being sqrt((r, C r) / (b, C b)), the quantity of the
+// stopping test, and the time left extrapolated from its mean decrease per
+// iteration so far ("time left unknown" before it decreases).
+//
+// Convergence: PCG stops when (r, C r) < relative_tolerance^2 (b, C b), C the
 // AMG preconditioner (~K^-1, so an energy-like norm of the error). A 2-norm
 // test ||K x - b|| <= 1e-10 ||b|| would be at the round-off floor (CHOLMOD's
 // own solution of a 20k-DoF cantilever leaves ~1e-10), and at 2.4 M DoFs the
@@ -38,7 +50,8 @@
 // (1e-6: a guard against a broken solve; the tests show 2e-8..7e-8 at the
 // default tolerance while the displacements agree with CHOLMOD to ~1e-11). A column that does not converge within
 // max_iterations is an Error naming the column, the iteration count and the
-// residual reached.
+// residual reached; so is a breakdown of the recurrence ((A p, p) = 0, or a
+// step length or (r, C r) that is not a positive normal number).
 //
 // MPI: hypre is built with MPI. By default each AmgSolver works on
 // MPI_COMM_SELF (one process; MPI is initialised on first use if the program
@@ -71,7 +84,11 @@ struct AmgOptions {
   // MPI_COMM_WORLD with each rank owning a block of nodes (see the header
   // comment); false: MPI_COMM_SELF.
   bool distributed = false;
-  int hypre_print_level = 0;  // hypre's own output (1: set-up summary, 3: PCG residuals)
+  int hypre_print_level = 0;  // hypre's own output (1: BoomerAMG set-up summary)
+  // A progress line (iteration, residual, time left) at most every this many
+  // seconds of a right-hand side's PCG, once it has run that long; 0: every
+  // iteration (tests, debugging), negative: never.
+  double progress_interval_s = 10.0;
 };
 
 struct AmgStatistics {

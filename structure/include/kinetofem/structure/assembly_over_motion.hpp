@@ -57,6 +57,9 @@ struct PointSummary {
   Eigen::Vector3d static_displacement_m = Eigen::Vector3d::Zero();
   std::vector<PointContribution> static_contributions;
   Eigen::Matrix3d static_compliance_m_per_n = Eigen::Matrix3d::Zero();
+  // The displacement at every output time (T x 3, world axes, m): the
+  // quasi-static deflection the vibration stage adds its ringing to.
+  Eigen::MatrixXd displacement_history_m;
 };
 
 struct AssemblySummary {

@@ -67,6 +67,7 @@
 #include <Eigen/Core>
 
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
@@ -247,6 +248,19 @@ struct InterfaceInfo {
   bool elastic = false;
 };
 
+// The linear structure of one pose at the interfaces (interfaces() order),
+// what the modes of the assembly need (vibration/assembly_vibration.hpp):
+// u (6M) the interfaces' motions in world axes (translation of the reference
+// point, m; rotation, rad); the joints and rigid drives hold C u = 0; the
+// chains and compliant drives store the energy u^T S u / 2.
+struct InterfaceStructure {
+  std::vector<Eigen::Matrix3d> body_rotation;   // per model body: body axes -> world
+  std::vector<Eigen::Vector3d> interface_arm_m;  // per interface: reference point - its body's origin, world axes
+  Eigen::MatrixXd constraints;                   // rows x 6M, dimensionless (rotation rows: rad)
+  std::vector<std::string> constraint_owner;     // per row, e.g. "joint 'A0' (x)"
+  Eigen::MatrixXd springs;                       // 6M x 6M: N/m, N/rad, N m/rad
+};
+
 struct AssemblyStatistics {
   int elastic_parts = 0, rigid_bodies = 0, interfaces = 0, unknowns = 0;
   long part_dofs = 0;          // sum over the parts
@@ -286,6 +300,21 @@ class ElasticAssembly {
   std::vector<PoseSolution> solve(const std::vector<mech::Frame>& frames);
 
   std::vector<InterfaceInfo> interfaces() const;
+  // The pose's constraints and springs (InterfaceStructure); throws Error
+  // like solve() for a frame of another model or a chain without free length.
+  InterfaceStructure interface_structure(const mech::Frame& frame) const;
+  // What the elastic part of `body` is made of here (Error if it has none):
+  // its interface columns G (3N x 6m, body axes, interfaces() order of the
+  // body's interfaces: u_b = G^T u; distributing couplings only, Error for
+  // BoreCoupling::RigidBore), its 3-2-1-supported factorized analysis and
+  // its loads without the joints and motion drives (loads::LinkLoads).
+  const Eigen::MatrixXd& interface_columns(const std::string& body) const;
+  fem::LinearStaticAnalysis& supported_analysis(const std::string& body) const;
+  const loads::LinkLoads& part_loads(const std::string& body) const;
+  // Per moving body (model order, the ground skipped): the multibody model's
+  // applied minus inertia loads at the frame, world axes, force N and moment
+  // N m about the body's origin.
+  std::vector<Vector6d> body_loads(const mech::Frame& frame) const;
   // Flexibility G^T K_s^-1 G of the elastic part of `body` over its
   // interfaces (interfaces() order), body axes; 6m x 6m.
   Eigen::MatrixXd flexibility(const std::string& body) const;

@@ -99,6 +99,11 @@ struct CraigBamptonOptions {
   // Add the residual vectors X (header): n_b more coordinates, frequency
   // error O((f / f_cutoff)^4) instead of O((f / f_cutoff)^2).
   bool residual_vectors = true;
+  // false: no fixed-interface modes at all (no Lanczos): the static
+  // reduction Psi plus the residual vectors, whose frequencies bound the
+  // full model's from above (an estimate for choosing the cutoff);
+  // highest_frequency_of_interest_hz is then not used.
+  bool fixed_interface_modes = true;
   fem::EigenOptions eigen;                        // tolerance, label (modes, shift: set here)
 };
 

@@ -1,0 +1,120 @@
+#pragma once
+// AssemblyModes — the natural frequencies and mode shapes of the elastic
+// assembly (structure/elastic_assembly.hpp) in any pose, from one
+// Craig-Bampton reduction per part (vibration/craig_bampton.hpp) made once,
+// and per pose one small dense eigenproblem. docs/vibration.md.
+//
+// Coordinates x (the same in every pose): per elastic part, in its body axes,
+//   [u_b; q; r]  its interfaces' motions (the assembly's joint, drive and
+//                tracked-point couplings, then one coupling per point mass it
+//                carries: the gripper, the casting), its fixed-interface
+//                modes and its residual vectors;
+// per moving rigid body, its origin's translation and rotation (body axes).
+// In body axes the parts' K_r, M_r and the rigid bodies' 6 x 6 masses do not
+// change with the pose; the pose enters through the interfaces' world
+// coordinates u = U(pose) x: the joints and rigid drives hold C U x = 0 and
+// the chains and compliant drives add U^T S U to K (InterfaceStructure). On
+// the null space N of C U (orthonormal basis, by QR):
+//   (N^T K N) y = w^2 (N^T M N) y,   mode shape x = N y, x^T M x = 1.
+// Mass: each part's consistent mass; a point mass m at its mount face's
+// coupling, diag(m, m, m) on the coupling's translation (no rotary inertia:
+// the planar model has none); a rigid body's m, centre of mass and I_zz from
+// the multibody model, with I_xx = I_yy = I_zz / 2 about its centre of mass
+// (a planar lamina with equal principal moments: the planar model gives no
+// out-of-plane inertia; said in the log).
+// The stiffness is the structure's about each pose: no geometric stiffness of
+// the weight and inertia loads, no gyroscopic or centrifugal terms (the pose
+// frozen, docs/vibration.md "What is neglected").
+//
+// Part-mode rule (CraigBamptonOptions): each part keeps every fixed-interface
+// mode up to part_mode_cutoff_hz, plus its residual vectors. Automatic cutoff
+// (0, the default): cutoff_factor x f_max, f_max = the highest assembly
+// frequency wanted, estimated from the parts' static reduction (constraint
+// modes and residual vectors only, no Lanczos) over the poses given; by
+// Rayleigh-Ritz the final frequencies lie below that estimate, so the rule
+// holds for them (checked and printed by check_rule()).
+//
+// SI units: Hz, rad/s; x in m, rad, sqrt(kg) m.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/mechanisms/multibody/model.hpp"
+#include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/structure/elastic_assembly.hpp"
+#include "kinetofem/vibration/craig_bampton.hpp"
+
+namespace kinetofem::structure {
+
+struct AssemblyModesOptions {
+  int modes = 6;                      // natural frequencies wanted per pose, >= 1
+  double part_mode_cutoff_hz = 0.0;   // > 0: fixed-interface modes kept up to it; 0: automatic (header)
+  double cutoff_factor = 2.0;         // automatic cutoff = factor x f_max, >= 1
+};
+
+// One part's reduction, for the log and the summary.
+struct PartReduction {
+  std::string body;
+  long long dofs = 0;
+  Eigen::Index boundary = 0, modes = 0, residual = 0;  // coordinates
+  double cutoff_hz = 0.0, first_dropped_hz = 0.0;       // the rule: first dropped > cutoff
+  double seconds = 0.0;
+};
+
+struct PoseModes {
+  double t = 0.0;
+  Eigen::VectorXd omega_rad_s;    // m, ascending
+  Eigen::VectorXd frequency_hz;   // m
+  Eigen::MatrixXd shapes;         // n x m over x, mass-normalized
+  Eigen::Index constrained_size = 0;  // dimension of the null space of C U
+};
+
+class AssemblyModes {
+ public:
+  // Reduces every part of `assembly` once (its shared factorizations); the
+  // automatic cutoff is estimated over `poses` (e.g. the motion's first,
+  // middle and last frames and the static pose). Throws Error for bad
+  // options, rigid-bore couplings, a part of zero density, an eigen solve
+  // that does not converge (vibration::EigenNotConverged names the part).
+  AssemblyModes(const ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+                const mech::MultibodyModel& model, const AssemblyModesOptions& options,
+                const std::vector<mech::Frame>& poses, const Log& log);
+  ~AssemblyModes();
+  AssemblyModes(AssemblyModes&&) noexcept;
+  AssemblyModes& operator=(AssemblyModes&&) noexcept;
+
+  // The lowest options.modes modes of the pose. Error naming the time when
+  // fewer coordinates are free than modes wanted.
+  PoseModes modes(const mech::Frame& frame) const;
+
+  Eigen::Index size() const;  // n = the coordinates x
+  const Eigen::MatrixXd& mass() const;  // M_x, n x n (constant)
+  // Generalized load on x of the frame's inertia and weight loads (the
+  // parts' load patterns without joints and motion drives; the rigid
+  // bodies' applied minus inertia loads), N, N m, N/sqrt(kg)... per coordinate.
+  Eigen::VectorXd load(const mech::Frame& frame) const;
+  // The tracked point's translation (world axes, m) as rows over x: 3 x n.
+  Eigen::MatrixXd point_rows(const std::string& point, const mech::Frame& frame) const;
+  // The reduced model's static response to load(frame), x (for the check
+  // against the elastic assembly's own static solution).
+  Eigen::VectorXd static_response(const mech::Frame& frame, const Eigen::VectorXd& load) const;
+  // Per part: its displacement field (N x 3, world axes) of a vector x.
+  std::vector<Eigen::MatrixXd> part_fields(const Eigen::VectorXd& x, const mech::Frame& frame) const;
+
+  const std::vector<PartReduction>& reductions() const;
+  double cutoff_hz() const;       // as used (the same for every part)
+  double estimated_fmax_hz() const;  // automatic rule: f_max of the static reduction; else 0
+  // The rule in one line: cutoff, f_max of the final modes over the poses
+  // seen, the factor achieved.
+  std::string check_rule(double highest_frequency_seen_hz) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace kinetofem::structure

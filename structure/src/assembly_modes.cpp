@@ -1,0 +1,444 @@
+#include "kinetofem/structure/assembly_modes.hpp"
+
+#include "rigid_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+#include <fmt/format.h>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/mechanisms/multibody/system.hpp"
+#include "kinetofem/solver/couplings.hpp"
+
+namespace kinetofem::structure {
+
+namespace {
+
+using detail::Matrix6d;
+using detail::rotate6;
+using detail::skew;
+using detail::transfer;
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Vector3d::UnitZ()).toRotationMatrix(); }
+
+// Mass matrix of a rigid body on (translation, rotation) of its origin, body
+// axes: a point mass m at c moves by t + w x c = [I, -skew(c)] (t, w).
+Matrix6d point_mass_6x6(double m, const Vector3d& c) {
+  Eigen::Matrix<double, 3, 6> L;
+  L << Eigen::Matrix3d::Identity(), -skew(c);
+  return m * L.transpose() * L;
+}
+
+}  // namespace
+
+struct AssemblyModes::Impl {
+  // One Craig-Bampton interface of a part per face set: the assembly's
+  // interfaces on the same face set move rigidly with it (a rigid transfer
+  // from its reference point), and a point mass on its mount face is a
+  // 6 x 6 rigid mass on it (at the mass's point).
+  struct CbInterface {
+    std::string name, face_set;
+    Vector3d reference = Vector3d::Zero();  // body frame
+    Eigen::MatrixXd columns;                // 3N x 6
+    Matrix6d mass = Matrix6d::Zero();       // point masses carried here, on its 6 coordinates
+  };
+  struct PartRed {
+    std::string body, label;
+    int body_index = -1;
+    const fem::Mesh* mesh = nullptr;
+    const loads::LinkLoads* loads = nullptr;
+    std::vector<CbInterface> interfaces;
+    vibration::CraigBamptonModel cb;
+    Index offset = 0, size = 0;  // in x
+    MatrixXd basis_t_patterns;   // T^T P: reduced load patterns (n_r x patterns)
+  };
+  struct RigidRed {
+    int body_index = -1;
+    Index offset = 0;
+    Matrix6d mass = Matrix6d::Zero();
+  };
+  // Where an interface of the assembly sits in x.
+  struct InterfaceMap {
+    int body_index = -1;
+    int part = -1;        // elastic: its part; -1: rigid
+    Index column = 0;     // first of the 6 coordinates in x it moves with (its coupling's; a rigid body's)
+    Vector3d reference = Vector3d::Zero();  // body frame
+    Vector3d arm = Vector3d::Zero();        // from those coordinates' point to the reference, body frame
+  };
+
+  const ElasticAssembly& assembly;
+  AssemblyModesOptions options;
+  Log log;
+  std::vector<InterfaceInfo> infos;
+  std::vector<PartRed> parts;
+  std::vector<RigidRed> rigid;
+  std::vector<InterfaceMap> map;
+  std::vector<int> moving_index;  // per model body; -1: ground
+  std::vector<std::string> body_names;
+  std::vector<PartReduction> reports;
+  Index n = 0;
+  MatrixXd K, M;
+  double length_scale = 1.0, cutoff = 0.0, fmax_estimate = 0.0;
+
+  Impl(const ElasticAssembly& a, const std::vector<pipeline::Part>& given, const mech::MultibodyModel& model,
+       const AssemblyModesOptions& o, const std::vector<mech::Frame>& poses, const Log& l);
+
+  void reduce_parts(const vibration::CraigBamptonOptions& cbo);
+  void build_matrices();
+
+  MatrixXd interface_map(const mech::Frame& frame) const {  // U: 6M x n
+    MatrixXd U = MatrixXd::Zero(6 * Index(map.size()), n);
+    for (size_t k = 0; k < map.size(); ++k) {
+      const InterfaceMap& im = map[k];
+      const Matrix6d Q = rotate6(rot_z(frame.bodies[size_t(im.body_index)].q.z()));
+      U.block<6, 6>(6 * Index(k), im.column) = Q * transfer(im.arm);
+    }
+    return U;
+  }
+
+  // An orthonormal basis (scaled back) of the motions C U x = 0 of a pose.
+  MatrixXd admissible(const mech::Frame& frame) const {
+    const InterfaceStructure is = assembly.interface_structure(frame);
+    MatrixXd A = is.constraints * interface_map(frame);
+    // Rotations as length_scale x angle, so that rank decisions compare like with like.
+    VectorXd scale = VectorXd::Ones(n);
+    for (const auto& p : parts)
+      for (Index b = 0; b < p.cb.boundary_count; ++b)
+        if (b % 6 >= 3) scale(p.offset + b) = 1.0 / length_scale;
+    for (const auto& r : rigid)
+      for (int c = 3; c < 6; ++c) scale(r.offset + c) = 1.0 / length_scale;
+    A = A * scale.asDiagonal();
+    if (A.rows() == 0) return scale.asDiagonal();
+    Eigen::ColPivHouseholderQR<MatrixXd> qr(A.transpose());
+    qr.setThreshold(1e-10);
+    const Index rank = qr.rank();
+    const MatrixXd Q = qr.householderQ();
+    return scale.asDiagonal() * Q.rightCols(n - rank);
+  }
+
+  PoseModes solve(const mech::Frame& frame, int count) const {
+    const MatrixXd N = admissible(frame);
+    require(N.cols() >= count,
+            "vibration at t = {:.6g} s: the reduced assembly has {} free coordinates, fewer than the {} modes wanted",
+            frame.t, N.cols(), count);
+    const InterfaceStructure is = assembly.interface_structure(frame);
+    const MatrixXd U = interface_map(frame);
+    MatrixXd Kc = N.transpose() * (K + U.transpose() * is.springs * U) * N;
+    MatrixXd Mc = N.transpose() * M * N;
+    // Diagonal scaling to unit modal mass (kg, kg m^2 and modal coordinates mixed).
+    const VectorXd d = Mc.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    Kc = d.asDiagonal() * Kc * d.asDiagonal();
+    Mc = d.asDiagonal() * Mc * d.asDiagonal();
+    Kc = (0.5 * (Kc + Kc.transpose())).eval();
+    Mc = (0.5 * (Mc + Mc.transpose())).eval();
+    const Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> eig(Kc, Mc);
+    require(eig.info() == Eigen::Success,
+            "vibration at t = {:.6g} s: the reduced mass matrix is not positive definite (a body without mass?)",
+            frame.t);
+    PoseModes out;
+    out.t = frame.t;
+    out.constrained_size = N.cols();
+    out.omega_rad_s.resize(count);
+    out.frequency_hz.resize(count);
+    for (int i = 0; i < count; ++i) {
+      const double w2 = eig.eigenvalues()(i);
+      out.omega_rad_s(i) = w2 > 0 ? std::sqrt(w2) : 0.0;
+      out.frequency_hz(i) = fem::frequency_hz(w2);
+    }
+    out.shapes = N * d.asDiagonal() * eig.eigenvectors().leftCols(count);
+    return out;
+  }
+};
+
+AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<pipeline::Part>& given,
+                          const mech::MultibodyModel& model, const AssemblyModesOptions& o,
+                          const std::vector<mech::Frame>& poses, const Log& l)
+    : assembly(a), options(o), log(l), infos(a.interfaces()) {
+  require(options.modes >= 1, "vibration: modes = {}: at least one natural frequency must be wanted", options.modes);
+  require(options.part_mode_cutoff_hz >= 0 && std::isfinite(options.part_mode_cutoff_hz),
+          "vibration: part_mode_cutoff_hz = {} must be positive (or 0: automatic)", options.part_mode_cutoff_hz);
+  require(options.cutoff_factor >= 1 && std::isfinite(options.cutoff_factor),
+          "vibration: cutoff_factor = {} must be at least 1", options.cutoff_factor);
+  require(!poses.empty(), "vibration: no poses to estimate the frequencies of");
+  length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
+  auto body_index = [&](const std::string& name) {
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == name) return int(b);
+    fail("vibration: no body '{}' in the mechanism '{}'", name, model.name);
+  };
+  moving_index.assign(model.bodies.size(), -1);
+  for (const auto& b : model.bodies) body_names.push_back(b.name);
+  int moving = 0;
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    if (!model.bodies[b].fixed) moving_index[b] = moving++;
+
+  // Parts: their interfaces (shared where they coincide) and point masses.
+  for (const pipeline::Part& part : given) {
+    PartRed pr;
+    pr.body = part.body();
+    pr.label = part.spec.label.empty() ? fmt::format("part '{}'", pr.body) : part.spec.label;
+    pr.body_index = body_index(pr.body);
+    pr.mesh = &assembly.supported_analysis(pr.body).model().mesh;
+    pr.loads = &assembly.part_loads(pr.body);
+    const MatrixXd& G = assembly.interface_columns(pr.body);
+    // One coupling per face set: a second reference point on the same face
+    // moves rigidly with the first (its columns are a rigid transfer of the
+    // first's, so they would be dependent boundary coordinates).
+    auto find = [&](const std::string& face_set) {
+      for (size_t i = 0; i < pr.interfaces.size(); ++i)
+        if (pr.interfaces[i].face_set == face_set) return int(i);
+      return -1;
+    };
+    Index local = 0;
+    for (const InterfaceInfo& info : infos) {
+      if (info.body != pr.body) continue;
+      if (const int i = find(info.face_set); i < 0) {
+        pr.interfaces.push_back({info.kind + "." + info.name, info.face_set, info.reference_body_m,
+                                 G.middleCols(6 * local, 6), Matrix6d::Zero()});
+      } else {
+        // The coupling's motion at another reference point is the rigid
+        // transfer of its motion at the first: G_k = G_first transfer(arm)^T.
+        const CbInterface& first = pr.interfaces[size_t(i)];
+        const MatrixXd moved = first.columns * transfer(info.reference_body_m - first.reference).transpose();
+        const double error = (moved - G.middleCols(6 * local, 6)).cwiseAbs().maxCoeff();
+        require(error <= 1e-9 * G.middleCols(6 * local, 6).cwiseAbs().maxCoeff(),
+                "vibration: {}: the {} '{}' on face set '{}' does not move rigidly with '{}' on the same face "
+                "(columns differ by {:.2e})",
+                pr.label, info.kind, info.name, info.face_set, first.name, error);
+      }
+      ++local;
+    }
+    require(6 * local == G.cols(), "vibration: {}: {} interface columns for {} interfaces", pr.label, G.cols(), local);
+    const mech::Body& body = model.bodies[size_t(pr.body_index)];
+    for (const auto& pm : part.spec.attachments.point_masses) {
+      const auto it = std::find_if(body.point_masses.begin(), body.point_masses.end(),
+                                   [&](const mech::PointMass& m) { return m.name == pm.point_mass; });
+      require(it != body.point_masses.end(), "vibration: {}: body '{}' has no point mass '{}'", pr.label, pr.body,
+              pm.point_mass);
+      const double z = fem::DistributingCoupling(*pr.mesh, pm.face_set).centroid().z();
+      const Vector3d reference(it->position_body.x(), it->position_body.y(), z);
+      int i = find(pm.face_set);
+      if (i < 0) {
+        pr.interfaces.push_back({"mass." + it->name, pm.face_set, reference,
+                                 vibration::coupling_interface(*pr.mesh, pm.face_set, reference, it->name).columns,
+                                 Matrix6d::Zero()});
+        i = int(pr.interfaces.size()) - 1;
+      }
+      CbInterface& carrier = pr.interfaces[size_t(i)];
+      carrier.mass += point_mass_6x6(it->mass_kg, reference - carrier.reference);
+    }
+    parts.push_back(std::move(pr));
+  }
+
+  // Rigid moving bodies: mass, centre of mass and I_zz of the multibody
+  // model; I_xx = I_yy = I_zz / 2 (header).
+  const mech::MultibodySystem system(model);
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (model.bodies[b].fixed) continue;
+    if (std::any_of(parts.begin(), parts.end(), [&](const PartRed& p) { return p.body_index == int(b); })) continue;
+    const mech::EffectiveBody& eff = system.effective(int(b));
+    RigidRed rr;
+    rr.body_index = int(b);
+    const Vector3d c(eff.com_body.x(), eff.com_body.y(), 0.0);
+    rr.mass = point_mass_6x6(eff.mass_kg, c);
+    rr.mass.block<3, 3>(3, 3) += Eigen::Vector3d(0.5, 0.5, 1.0).asDiagonal() * eff.inertia_kgm2;
+    require(eff.mass_kg > 0 && eff.inertia_kgm2 > 0,
+            "vibration: rigid body '{}' has mass {} kg and inertia {} kg m^2: both must be positive for its modes",
+            model.bodies[b].name, eff.mass_kg, eff.inertia_kgm2);
+    log.info("vibration: rigid body '{}': {:.4g} kg, I_zz {:.4g} kg m^2 (I_xx = I_yy = I_zz / 2 assumed)",
+             model.bodies[b].name, eff.mass_kg, eff.inertia_kgm2);
+    rigid.push_back(rr);
+  }
+
+  // The part-mode rule.
+  vibration::CraigBamptonOptions cbo;
+  if (options.part_mode_cutoff_hz > 0) {
+    cbo.highest_frequency_of_interest_hz = options.part_mode_cutoff_hz;
+    cbo.cutoff_factor = 1.0;
+    reduce_parts(cbo);
+  } else {
+    cbo.fixed_interface_modes = false;
+    reduce_parts(cbo);
+    for (const mech::Frame& frame : poses)
+      fmax_estimate = std::max(fmax_estimate, solve(frame, options.modes).frequency_hz(options.modes - 1));
+    require(fmax_estimate > 0, "vibration: the static reduction gives no positive frequency (a mechanism?)");
+    log.info("vibration: part-mode rule: f_max <= {:.5g} Hz (static reduction over {} poses, an upper bound); "
+             "cutoff = {:.3g} x f_max",
+             fmax_estimate, poses.size(), options.cutoff_factor);
+    cbo = {};
+    cbo.highest_frequency_of_interest_hz = fmax_estimate;
+    cbo.cutoff_factor = options.cutoff_factor;
+    reduce_parts(cbo);
+  }
+  cutoff = cbo.cutoff_factor * cbo.highest_frequency_of_interest_hz;
+}
+
+void AssemblyModes::Impl::reduce_parts(const vibration::CraigBamptonOptions& given_options) {
+  reports.clear();
+  for (PartRed& pr : parts) {
+    std::vector<vibration::PartInterface> interfaces;
+    for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
+    vibration::CraigBamptonOptions cbo = given_options;
+    cbo.eigen.label = pr.label;
+    pr.cb = vibration::reduce_craig_bampton(assembly.supported_analysis(pr.body), interfaces, cbo, &log);
+    require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
+            "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,
+            pr.cb.constraint_modes.rows(), 3 * pr.mesh->node_count());
+    MatrixXd T(pr.cb.constraint_modes.rows(), pr.cb.stiffness.rows());
+    T << pr.cb.constraint_modes, pr.cb.normal_modes, pr.cb.residual_vectors;
+    pr.basis_t_patterns = T.transpose() * pr.loads->pattern_forces();
+    reports.push_back({pr.body, pr.cb.free_dofs, pr.cb.boundary_count, pr.cb.mode_count, pr.cb.residual_count,
+                       pr.cb.cutoff_hz, pr.cb.first_dropped_hz, pr.cb.seconds});
+  }
+  build_matrices();
+}
+
+void AssemblyModes::Impl::build_matrices() {
+  n = 0;
+  for (PartRed& pr : parts) {
+    pr.offset = n;
+    pr.size = pr.cb.stiffness.rows();
+    n += pr.size;
+  }
+  for (RigidRed& r : rigid) {
+    r.offset = n;
+    n += 6;
+  }
+  K = MatrixXd::Zero(n, n);
+  M = MatrixXd::Zero(n, n);
+  for (const PartRed& pr : parts) {
+    K.block(pr.offset, pr.offset, pr.size, pr.size) = pr.cb.stiffness;
+    M.block(pr.offset, pr.offset, pr.size, pr.size) = pr.cb.mass;
+    for (size_t i = 0; i < pr.interfaces.size(); ++i) {
+      const Index j = pr.offset + pr.cb.interface_offset[i];
+      M.block<6, 6>(j, j) += pr.interfaces[i].mass;
+    }
+  }
+  for (const RigidRed& r : rigid) M.block<6, 6>(r.offset, r.offset) = r.mass;
+
+  map.clear();
+  for (const InterfaceInfo& info : infos) {
+    InterfaceMap im;
+    im.reference = info.reference_body_m;
+    for (size_t p = 0; p < parts.size(); ++p)
+      if (parts[p].body == info.body) {
+        const PartRed& pr = parts[p];
+        im.body_index = pr.body_index;
+        im.part = int(p);
+        for (size_t i = 0; i < pr.interfaces.size(); ++i)
+          if (pr.interfaces[i].face_set == info.face_set) {
+            im.column = pr.offset + pr.cb.interface_offset[i];
+            im.arm = info.reference_body_m - pr.interfaces[i].reference;
+          }
+      }
+    if (im.part < 0) {
+      for (const RigidRed& r : rigid)
+        if (body_names[size_t(r.body_index)] == info.body) {
+          im.body_index = r.body_index;
+          im.column = r.offset;
+          im.arm = info.reference_body_m;
+        }
+      require(im.body_index >= 0, "vibration: interface '{}' is on body '{}', which is neither a part nor a rigid "
+              "moving body", info.name, info.body);
+    }
+    map.push_back(im);
+  }
+}
+
+// ---------------------------------------------------------------------------
+
+AssemblyModes::AssemblyModes(const ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+                             const mech::MultibodyModel& model, const AssemblyModesOptions& options,
+                             const std::vector<mech::Frame>& poses, const Log& log)
+    : impl_(std::make_unique<Impl>(assembly, parts, model, options, poses, log)) {}
+AssemblyModes::~AssemblyModes() = default;
+AssemblyModes::AssemblyModes(AssemblyModes&&) noexcept = default;
+AssemblyModes& AssemblyModes::operator=(AssemblyModes&&) noexcept = default;
+
+PoseModes AssemblyModes::modes(const mech::Frame& frame) const { return impl_->solve(frame, impl_->options.modes); }
+
+Index AssemblyModes::size() const { return impl_->n; }
+const MatrixXd& AssemblyModes::mass() const { return impl_->M; }
+
+VectorXd AssemblyModes::load(const mech::Frame& frame) const {
+  const Impl& im = *impl_;
+  VectorXd F = VectorXd::Zero(im.n);
+  for (const auto& pr : im.parts)
+    F.segment(pr.offset, pr.size) = pr.basis_t_patterns * pr.loads->coefficients_at(frame).coefficients;
+  if (!im.rigid.empty()) {
+    const std::vector<Vector6d> loads = im.assembly.body_loads(frame);
+    for (const auto& r : im.rigid)
+      F.segment<6>(r.offset) = rotate6(rot_z(frame.bodies[size_t(r.body_index)].q.z())).transpose() *
+                               loads[size_t(im.moving_index[size_t(r.body_index)])];
+  }
+  return F;
+}
+
+MatrixXd AssemblyModes::point_rows(const std::string& point, const mech::Frame& frame) const {
+  const Impl& im = *impl_;
+  for (size_t k = 0; k < im.infos.size(); ++k)
+    if (im.infos[k].kind == "point" && im.infos[k].name == point)
+      return im.interface_map(frame).middleRows(6 * Index(k), 3);
+  fail("vibration: no tracked point '{}' in the elastic assembly", point);
+}
+
+VectorXd AssemblyModes::static_response(const mech::Frame& frame, const VectorXd& load) const {
+  const Impl& im = *impl_;
+  const MatrixXd N = im.admissible(frame);
+  const InterfaceStructure is = im.assembly.interface_structure(frame);
+  const MatrixXd U = im.interface_map(frame);
+  const MatrixXd Kc = N.transpose() * (im.K + U.transpose() * is.springs * U) * N;
+  return N * Kc.ldlt().solve(N.transpose() * load);
+}
+
+std::vector<MatrixXd> AssemblyModes::part_fields(const VectorXd& x, const mech::Frame& frame) const {
+  const Impl& im = *impl_;
+  std::vector<MatrixXd> out;
+  for (const auto& pr : im.parts) {
+    const VectorXd xp = x.segment(pr.offset, pr.size);
+    const Index nb = pr.cb.boundary_count, nq = pr.cb.mode_count, nx = pr.cb.residual_count;
+    VectorXd u = pr.cb.constraint_modes * xp.head(nb);
+    if (nq > 0) u += pr.cb.normal_modes * xp.segment(nb, nq);
+    if (nx > 0) u += pr.cb.residual_vectors * xp.tail(nx);
+    const Eigen::Matrix3d R = rot_z(frame.bodies[size_t(pr.body_index)].q.z());
+    const Index N = pr.mesh->node_count();
+    MatrixXd field(N, 3);
+    for (Index i = 0; i < N; ++i) field.row(i) = (R * u.segment<3>(3 * i)).transpose();
+    out.push_back(std::move(field));
+  }
+  return out;
+}
+
+const std::vector<PartReduction>& AssemblyModes::reductions() const { return impl_->reports; }
+double AssemblyModes::cutoff_hz() const { return impl_->cutoff; }
+double AssemblyModes::estimated_fmax_hz() const { return impl_->fmax_estimate; }
+
+std::string AssemblyModes::check_rule(double highest_frequency_seen_hz) const {
+  const Impl& im = *impl_;
+  std::string text = fmt::format(
+      "part-mode rule: every fixed-interface mode up to {:.5g} Hz kept ({}), plus the residual vectors; the highest "
+      "assembly frequency wanted over the poses solved is {:.5g} Hz, so the cutoff is {:.2f} x it (required {:.2f}): "
+      "{}",
+      im.cutoff, im.options.part_mode_cutoff_hz > 0 ? "given" : "automatic", highest_frequency_seen_hz,
+      im.cutoff / highest_frequency_seen_hz, im.options.part_mode_cutoff_hz > 0 ? 1.0 : im.options.cutoff_factor,
+      im.cutoff >= (im.options.part_mode_cutoff_hz > 0 ? 1.0 : im.options.cutoff_factor) * highest_frequency_seen_hz *
+                       (1 - 1e-12)
+          ? "holds"
+          : "FAILS (raise part_mode_cutoff_hz)");
+  for (const auto& r : im.reports)
+    text += fmt::format("\n  part '{}': {} DoFs -> {} boundary + {} modes + {} residual; first mode dropped {:.5g} Hz",
+                        r.body, r.dofs, r.boundary, r.modes, r.residual, r.first_dropped_hz);
+  return text;
+}
+
+}  // namespace kinetofem::structure
