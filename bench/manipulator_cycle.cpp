@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
@@ -92,17 +94,33 @@ int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s) {
                 1e3 * st.pose_seconds(), st.loads_seconds, st.load_solve_seconds, st.system_seconds, st.recovery_seconds,
                 st.setup_seconds + poses, per_link, (st.setup_seconds + poses) / std::max(per_link, 1e-9));
   }
-  std::printf("%7.2f %-7s meshing %.2f s, dynamics %.3f s, whole cycle %.2f s, peak memory %.2f GB\n", size_mm, "all",
-              s.meshing_seconds, s.dynamics_seconds, s.total_seconds, peak_rss_gb());
+  // The vibration (issue 14) when the case turns it on: its own line, and
+  // the cycle's limit ratio below is of the stress pipeline without it.
+  double vibration = 0.0;
+  if (s.vibration) {
+    const auto& v = *s.vibration;
+    vibration = v.reduction_seconds + v.modes_seconds + v.response_seconds;
+    std::string parts;
+    for (const auto& r : v.reductions)
+      parts += fmt::format("{}{} {} + {} + {}", parts.empty() ? "" : ", ", r.body, r.boundary, r.modes, r.residual);
+    std::printf("%7.2f %-7s vibration: reduction %.2f s (%s coordinates, part modes up to %.0f Hz), %d modes at %zu "
+                "poses %.3f s, response %.3f s; first frequency %.3f .. %.3f Hz\n",
+                size_mm, "all", v.reduction_seconds, parts.c_str(), v.cutoff_hz, v.modes, v.time_s.size(),
+                v.modes_seconds, v.response_seconds, v.lowest_first_hz, v.highest_first_hz);
+  }
+  std::printf("%7.2f %-7s meshing %.2f s, dynamics %.3f s, whole cycle %.2f s (without the vibration %.2f s), peak "
+              "memory %.2f GB\n",
+              size_mm, "all", s.meshing_seconds, s.dynamics_seconds, s.total_seconds, s.total_seconds - vibration,
+              peak_rss_gb());
   // The limit: every part's factorization flops at the DGEMM rate.
   double flops = 0.0, factorize = 0.0;
   for (const auto& l : s.links) flops += l.factorization_flops, factorize += l.factorize_seconds;
   const double limit = flops / (dgemm_gf_s * 1e9);
   std::printf("%7.2f %-7s factorizations %.4g flops in %.2f s: %.1f GFLOP/s = %.0f %% of DGEMM %.1f GFLOP/s; limit %.2f s, "
-              "cycle / limit %.2f\n",
+              "cycle (without the vibration) / limit %.2f\n",
               size_mm, "all", flops, factorize, flops / std::max(factorize, 1e-9) * 1e-9,
               100.0 * flops / std::max(factorize, 1e-9) / (dgemm_gf_s * 1e9), dgemm_gf_s, limit,
-              s.total_seconds / std::max(limit, 1e-9));
+              (s.total_seconds - vibration) / std::max(limit, 1e-9));
   std::fflush(stdout);
   return 0;
 }

@@ -206,7 +206,7 @@ void print_vibration(const post::ResultsFile& r) {
   for (const auto& point : v.points) {
     const post::PointVibrationData p = post::read_point_vibration(r, point);
     fmt::print("    point {}: dynamic amplification {:.3f} (peak |u| {:.4f} mm with vibration, {:.4f} mm quasi-static), "
-               "rings up to {:.4f} mm after the stop, {}\n",
+               "rings up to {:.3g} mm after the stop, {}\n",
                point, p.dynamic_amplification, p.peak_dynamic_m * 1e3, p.peak_quasi_static_m * 1e3,
                p.amplitude_at_stop_m * 1e3,
                std::isfinite(p.settling_time_s)

@@ -347,10 +347,10 @@ std::string format_vibration_summary(const VibrationSummary& s) {
   for (const auto& p : s.points) {
     out += fmt::format(
         "    point {}: peak elastic displacement {:.4f} mm at t = {:.4f} s (quasi-static {:.4f} mm at t = {:.4f} s): "
-        "dynamic amplification {:.3f}; vibration up to {:.4f} mm (t = {:.4f} s)\n",
+        "dynamic amplification {:.3f}; vibration up to {:.3g} mm (t = {:.4f} s)\n",
         p.name, p.peak_dynamic_m / kMm, p.peak_dynamic_time_s, p.peak_quasi_static_m / kMm, p.peak_quasi_static_time_s,
         p.dynamic_amplification, p.peak_vibration_m / kMm, p.peak_vibration_time_s);
-    out += fmt::format("      after the stop (t = {:.4f} s): rings up to {:.4f} mm about its final deflection; ", s.stop_time_s,
+    out += fmt::format("      after the stop (t = {:.4f} s): rings up to {:.3g} mm about its final deflection; ", s.stop_time_s,
                        p.amplitude_at_stop_m / kMm);
     out += std::isfinite(p.settling_time_s)
                ? fmt::format("stays below {:.3f} mm from {:.4f} s after the stop\n", s.settling_tolerance_m / kMm,
