@@ -1327,7 +1327,7 @@ FrequencyPictureInfo write_frequency_picture(const ResultsFile& results, const s
   }
   mark_point(cr, ax, ax.X(info.lowest_first_time_s), ax.Y(info.lowest_first_hz),
              fmt::format("lowest mode 1: {:.2f} Hz at t = {:.3f} s", info.lowest_first_hz, info.lowest_first_time_s), 13, 0,
-             1);
+             0);  // above the line unless at the top: mode 1 lies near the time axis and its labels
   canvas.save(png);
   return info;
 }

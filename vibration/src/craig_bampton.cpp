@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -254,6 +255,7 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
                   }())
                                          : std::vector<fem::DisplacementSupport>{});
   out.free_dofs = n;
+  Stopwatch phase;
   const fem::SymmetricUpperMatrix K = fem::assemble_stiffness(mesh, part.material, dofs).free_free;
   const fem::SymmetricUpperMatrix M = fem::assemble_mass(mesh, part.material, dofs);
   fem::check_mass_positive(M, label);
@@ -322,9 +324,13 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
     static_solve = [o = own.get()](const MatrixXd& B) { return o->solve(B); };
     out.factor_nonzeros = own->factor_nonzeros();
   }
+  out.phase_seconds[0] = phase.seconds();
+  phase.restart();
   PartSolver solver(static_solve, G, R, label);
   out.constraint_modes = solver.constraint_modes();
 
+  out.phase_seconds[1] = phase.seconds();
+  phase.restart();
   // Fixed-interface modes: growing batches until one lies above the cutoff.
   out.cutoff_hz = options.cutoff_factor * options.highest_frequency_of_interest_hz;
   const auto Ku = K.selfadjointView<Eigen::Upper>();
@@ -372,24 +378,25 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
   }
   out.mode_count = kept;
 
+  out.phase_seconds[2] = phase.seconds();
+  phase.restart();
   // Residual vectors: the fixed-interface static response to the constraint
   // modes' inertia, less its part in the kept modes (header), M-orthonormal
   // and K-diagonal among themselves.
   MatrixXd X(n, 0);
   if (options.residual_vectors) {
-    MatrixXd MPsi(n, nb);
-    for (Index j = 0; j < nb; ++j) MPsi.col(j) = Mu * out.constraint_modes.col(j);
+    // Sparse times dense blocks (all columns at once): several times faster
+    // than column by column on these matrices.
+    const MatrixXd MPsi = Mu * out.constraint_modes;
     X = solver.fixed_interface_inverse(MPsi);
     if (kept > 0) {
       const Eigen::VectorXd w2 = (2.0 * std::numbers::pi * out.normal_frequency_hz).array().square();
       X -= out.normal_modes * (w2.cwiseInverse().asDiagonal() * (out.normal_modes.transpose() * MPsi));
       // Twice, against round-off: X stays M-orthogonal to the kept modes.
-      MatrixXd MX(n, X.cols());
-      for (Index j = 0; j < X.cols(); ++j) MX.col(j) = Mu * X.col(j);
+      const MatrixXd MX = Mu * X;
       X -= out.normal_modes * (out.normal_modes.transpose() * MX);
     }
-    MatrixXd MX(n, X.cols()), KX(n, X.cols());
-    for (Index j = 0; j < X.cols(); ++j) MX.col(j) = Mu * X.col(j);
+    const MatrixXd MX = Mu * X;
     const Eigen::SelfAdjointEigenSolver<MatrixXd> gram(X.transpose() * MX);
     const double largest = gram.eigenvalues().maxCoeff();
     std::vector<Index> keep;
@@ -399,11 +406,7 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
     for (size_t j = 0; j < keep.size(); ++j)
       X1.col(Index(j)) = X * gram.eigenvectors().col(keep[j]) /
                          std::sqrt(gram.eigenvalues()[keep[j]]);
-    MatrixXd KX1(n, X1.cols()), MX1(n, X1.cols());
-    for (Index j = 0; j < X1.cols(); ++j) {
-      KX1.col(j) = Ku * X1.col(j);
-      MX1.col(j) = Mu * X1.col(j);
-    }
+    const MatrixXd KX1 = Ku * X1, MX1 = Mu * X1;
     const Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> diag(X1.transpose() * KX1,
                                                                   X1.transpose() * MX1);
     X = X1 * diag.eigenvectors();
@@ -414,14 +417,12 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
   out.residual_vectors = X;
   out.residual_count = X.cols();
 
+  out.phase_seconds[3] = phase.seconds();
+  phase.restart();
   // Reduced matrices by projection.
   MatrixXd T(n, nb + kept + X.cols());
   T << out.constraint_modes, out.normal_modes, X;
-  MatrixXd KT(n, T.cols()), MT(n, T.cols());
-  for (Index j = 0; j < T.cols(); ++j) {
-    KT.col(j) = Ku * T.col(j);
-    MT.col(j) = Mu * T.col(j);
-  }
+  const MatrixXd KT = Ku * T, MT = Mu * T;
   out.stiffness = T.transpose() * KT;
   out.mass = T.transpose() * MT;
   out.stiffness = (0.5 * (out.stiffness + out.stiffness.transpose())).eval();
@@ -440,6 +441,7 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
                                           out.normal_modes.cwiseAbs().maxCoeff());
   out.constraint_check = constraint;
   out.lanczos_solves = solver.solves();
+  out.phase_seconds[4] = phase.seconds();
   out.seconds = clock.seconds();
   if (log) log->info("{}", format_check(out));
   return out;
@@ -479,6 +481,10 @@ std::string format_check(const CraigBamptonModel& m) {
       m.cutoff_hz, m.mode_count, m.mode_count ? m.normal_frequency_hz[0] : 0.0,
       m.mode_count ? m.normal_frequency_hz[m.mode_count - 1] : 0.0, m.first_dropped_hz,
       m.first_dropped_hz / m.cutoff_hz, m.first_dropped_hz > m.cutoff_hz ? "holds" : "FAILS");
+  text += fmt::format("  time: K and M {:.2f} s, constraint modes {:.2f} s, fixed-interface modes {:.2f} s, residual "
+                      "vectors {:.2f} s, projection {:.2f} s\n",
+                      m.phase_seconds[0], m.phase_seconds[1], m.phase_seconds[2], m.phase_seconds[3],
+                      m.phase_seconds[4]);
   text += fmt::format("  checks: |Phi^T K Psi| / max|K_r| = {:.1e}, interface constraint {:.1e}",
                       m.coupling_stiffness_check, m.constraint_check);
   return text;
