@@ -109,12 +109,13 @@ void print_summary(const post::ResultsFile& r, const std::vector<post::HotSpot>&
     const fem::Mesh mesh = r.read_mesh(body);
     fmt::print("    {}: {} nodes, {} elements\n", body, mesh.node_count(), mesh.element_count());
     const auto times = r.series_times(body);
-    if (!times.empty() && post::is_vibration_body(body))  // mode shapes: the series "time" is the mode number
-      fmt::print("      mode shapes: modes 1 .. {}: {}\n", times.size(), listed(r.series_fields(body)));
+    if (post::is_vibration_body(body))  // mode shapes: static fields mode_<i>, mode_<i>_magnitude
+      fmt::print("      mode shapes (world coordinates at the pose, max |u| = 1): {}\n", listed(r.static_fields(body)));
     else if (!times.empty())
       fmt::print("      series: {} output times, {:.4g} .. {:.4g} s: {}\n", times.size(), times.front(),
                  times.back(), listed(r.series_fields(body)));
-    fmt::print("      static fields: {}\n", listed(r.static_fields(body)));
+    if (!post::is_vibration_body(body))
+      fmt::print("      static fields: {}\n", listed(r.static_fields(body)));
     if (!r.element_fields(body).empty()) fmt::print("      element fields: {}\n", listed(r.element_fields(body)));
     fmt::print("      envelopes: {}\n", listed(r.envelopes(body)));
   }

@@ -38,34 +38,33 @@ struct PointTrace {
   std::vector<Vector3d> dynamic, quasi_static;
 };
 
-// Mode shapes of one pose as a series over the mode number.
+// Mode shapes of one pose: per part a body whose mesh is placed in world
+// coordinates at the pose (so the parts stand assembled in ParaView) with
+// the static fields mode_<i> (N x 3, dimensionless, max |u| over the parts
+// = 1) and mode_<i>_magnitude. Static fields, not a series: ParaView's time
+// stays the motion's; a mode is animated by Warp By Vector's scale factor.
 void write_mode_shapes(post::ResultsWriter& writer, const std::string& prefix,
                        const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
                        const AssemblyModes& modes, const PoseModes& pose, const mech::Frame& frame) {
   std::vector<post::BodyWriter*> bodies;
-  std::vector<int> body_index;
   for (const auto& part : parts) {
-    post::BodyWriter& w = writer.add_body(prefix + part.body(), part.model.mesh);
-    w.begin_series({{.name = "position", .units = "m", .components = 3, .component_names = post::kVectorComponents,
-                     .geometry = true},
-                    {"mode_shape", post::layout::kDimensionless, 3, post::kVectorComponents},
-                    {"mode_shape_magnitude", post::layout::kDimensionless, 1, {}}});
-    bodies.push_back(&w);
+    int body = -1;
     for (size_t b = 0; b < model.bodies.size(); ++b)
-      if (model.bodies[b].name == part.body()) body_index.push_back(int(b));
+      if (model.bodies[b].name == part.body()) body = int(b);
+    fem::Mesh placed = part.model.mesh;
+    placed.nodes = detail::world_position(part.model.mesh, frame.bodies[size_t(body)]);
+    bodies.push_back(&writer.add_body(prefix + part.body(), placed));
   }
   for (Index i = 0; i < pose.shapes.cols(); ++i) {
     std::vector<MatrixXd> fields = modes.part_fields(pose.shapes.col(i), frame);
     double largest = 0.0;
     for (const auto& f : fields) largest = std::max(largest, f.rowwise().norm().maxCoeff());
     if (!(largest > 0)) largest = 1.0;
+    const std::string name = fmt::format("mode_{}", i + 1);
     for (size_t p = 0; p < parts.size(); ++p) {
       const post::FieldMatrix shape = fields[p] / largest;
-      const post::FieldMatrix magnitude = shape.rowwise().norm();
-      bodies[p]->write_step(double(i + 1),
-                            {{"position", detail::world_position(parts[p].model.mesh, frame.bodies[size_t(body_index[p])])},
-                             {"mode_shape", shape},
-                             {"mode_shape_magnitude", magnitude}});
+      bodies[p]->write_static(name, post::layout::kDimensionless, shape, post::kVectorComponents);
+      bodies[p]->write_static(name + "_magnitude", post::layout::kDimensionless, shape.rowwise().norm());
     }
   }
 }

@@ -89,8 +89,9 @@ inline constexpr const char* kAssemblyPointPrefix = "assembly.point.";      // +
 inline constexpr const char* kAssemblyMaxDisplacement = "assembly.max_displacement";
 
 // The vibration of the manipulator over the motion (structure/vibration_over_motion.hpp,
-// docs/results.md): bodies "vibration.static.<b>", "vibration.lowest.<b>" (mode shapes, their
-// series "time" the mode number 1..m), the history kVibrationFrequency (T_m x m, Hz) and tables.
+// docs/results.md): bodies "vibration.static.<b>", "vibration.lowest.<b>" (mode shapes: meshes
+// placed in world coordinates at the pose, static fields mode_<i> and mode_<i>_magnitude,
+// i = 1..m), the history kVibrationFrequency (T_m x m, Hz) and tables.
 inline constexpr const char* kVibrationBodyPrefix = "vibration.";
 inline constexpr const char* kVibrationFrequency = "vibration.frequency";                // history, Hz
 inline constexpr const char* kVibrationStaticFrequency = "vibration.static_frequency";   // table m x 1, Hz

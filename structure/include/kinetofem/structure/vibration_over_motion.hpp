@@ -39,9 +39,10 @@
 //     vibration.point.<P>.settling_time (s after the stop), .settling_tolerance (m),
 //     .amplitude_at_stop (m), .dynamic_amplification (1)
 //   bodies vibration.static.<b> (static study) and vibration.lowest.<b> (the
-//     pose of the lowest first frequency): series over "time" = mode number
-//     1..m: position (geometry, m), mode_shape (N x 3, max |u| over the parts
-//     = 1), mode_shape_magnitude.
+//     pose of the lowest first frequency), their meshes placed in world
+//     coordinates at that pose: static fields mode_<i> (N x 3, max |u| over
+//     the parts = 1) and mode_<i>_magnitude, i = 1..m (ParaView: Warp By
+//     Vector, and animate its scale factor).
 #include <limits>
 #include <optional>
 #include <string>
