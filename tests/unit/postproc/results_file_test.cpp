@@ -16,6 +16,7 @@
 #include "kinetofem/core/version.hpp"
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
+#include "post_test_calls.hpp"
 #include "postproc_test_meshes.hpp"
 
 namespace kinetofem::post {
@@ -642,15 +643,7 @@ TEST(ResultsFile, FileWithoutTablesListsNone) {
   EXPECT_TRUE(ResultsFile::open(dir / "run.h5").tables().empty());
 }
 
-std::string error_text(const auto& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error";
-  return "";
-}
+using testing::error_text;
 
 TEST(ResultsFile, BadTableCallsAreErrorsNamingTheTable) {
   TemporaryDirectory dir;

@@ -36,6 +36,7 @@
 #include "kinetofem/postproc/results_writer.hpp"
 #include "png_inspect.hpp"
 #include "post_test_results.hpp"
+#include "post_test_calls.hpp"
 #include "postproc_test_meshes.hpp"
 
 namespace kinetofem::post {
@@ -125,13 +126,7 @@ std::filesystem::path write_assembly(const std::filesystem::path& dir, const Con
   return path;
 }
 
-// Where a test's pictures go: KINETOFEM_PNG_KEEP_DIR (kept) or the test's temporary directory.
-std::filesystem::path output_dir(const testing::TemporaryDirectory& dir) {
-  const char* keep = std::getenv("KINETOFEM_PNG_KEEP_DIR");
-  if (!keep || !*keep) return dir.path();
-  std::filesystem::create_directories(keep);
-  return keep;
-}
+using testing::output_dir;
 std::filesystem::path picture(const testing::TemporaryDirectory& dir, const std::string& name) {
   return output_dir(dir) / name;
 }
@@ -231,63 +226,35 @@ TEST(PostPngAssembly, StressPictureLeavesTheAssemblyOut) {
   EXPECT_DOUBLE_EQ(info.max_value, 50e6);
 }
 
-std::string error_of(const auto& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error";
-  return "";
-}
-
 TEST(PostPngAssembly, MissingDataIsAnErrorNamingTheFile) {
   testing::TemporaryDirectory dir;
   const auto motion = ResultsFile::open(testing::write_synthetic_motion(dir.path()));
   const std::string motion_file = motion.path().string();
-  std::string message = error_of([&] { write_assembly_picture(motion, dir / "a.png"); });
+  std::string message = testing::error_text([&] { write_assembly_picture(motion, dir / "a.png"); });
   EXPECT_NE(message.find(motion_file), std::string::npos) << message;
   EXPECT_NE(message.find("no elastic assembly"), std::string::npos) << message;
-  message = error_of([&] { write_point_deflection_picture(motion, dir / "d.png"); });
+  message = testing::error_text([&] { write_point_deflection_picture(motion, dir / "d.png"); });
   EXPECT_NE(message.find("assembly.point.H.displacement"), std::string::npos) << message;
 
   const auto bare = ResultsFile::open(write_assembly(dir.path(), {.point_histories = false, .static_pose = false}));
   AssemblyPictureOptions o;
   o.pose = AssemblyPictureOptions::Pose::Static;
-  message = error_of([&] { write_assembly_picture(bare, dir / "s.png", o); });
+  message = testing::error_text([&] { write_assembly_picture(bare, dir / "s.png", o); });
   EXPECT_NE(message.find(bare.path().string()), std::string::npos) << message;
   EXPECT_NE(message.find("no static pose study"), std::string::npos) << message;
   o.pose = AssemblyPictureOptions::Pose::Step;
   o.step = kSteps;
-  message = error_of([&] { write_assembly_picture(bare, dir / "s.png", o); });
+  message = testing::error_text([&] { write_assembly_picture(bare, dir / "s.png", o); });
   EXPECT_NE(message.find("step 11 is outside the 11 output times"), std::string::npos) << message;
-  message = error_of([&] { write_point_deflection_picture(bare, dir / "d.png"); });
+  message = testing::error_text([&] { write_point_deflection_picture(bare, dir / "d.png"); });
   EXPECT_NE(message.find("tracked points of the elastic assembly: none"), std::string::npos) << message;
   EXPECT_FALSE(std::filesystem::exists(dir / "s.png"));
-}
-
-// `kinetofem post FILE --png DIR` through the program's CLI11 registration; returns stdout.
-std::string post_png(const std::filesystem::path& file, const std::filesystem::path& png_dir) {
-  CLI::App app{"kinetofem"};
-  app::CommandContext context;
-  app::add_post_command(app, context);
-  const std::string f = file.string(), d = png_dir.string();
-  const char* argv[] = {"kinetofem", "post", f.c_str(), "--png", d.c_str(), "--image-size", "800x600"};
-  ::testing::internal::CaptureStdout();
-  try {
-    app.parse(7, argv);
-  } catch (...) {
-    ::testing::internal::GetCapturedStdout();
-    throw;
-  }
-  EXPECT_EQ(context.exit_code, 0);
-  return ::testing::internal::GetCapturedStdout();
 }
 
 TEST(PostPngAssembly, PostPngWritesAndListsTheAssemblyPictures) {
   testing::TemporaryDirectory dir;
   const std::filesystem::path png = picture(dir, "post_png");
-  const std::string out = post_png(write_assembly(output_dir(dir)), png);
+  const std::string out = testing::post_png(write_assembly(output_dir(dir)), png);
   for (const char* name : {"assembly_static.png", "assembly_max_H.png", "deflection_H.png", "von_mises_critical.png"})
     EXPECT_TRUE(std::filesystem::is_regular_file(png / name)) << name;
   EXPECT_NE(out.find("assembly_static.png  (static pose study, deformation x200)"), std::string::npos) << out;
@@ -295,7 +262,7 @@ TEST(PostPngAssembly, PostPngWritesAndListsTheAssemblyPictures) {
   EXPECT_NE(out.find("deflection_H.png  (max |u| 0.900 mm at t = 0.6000 s)"), std::string::npos) << out;
 
   std::filesystem::create_directories(dir / "bare");
-  const std::string bare = post_png(write_assembly(dir / "bare", {.point_histories = false, .static_pose = false}),
+  const std::string bare = testing::post_png(write_assembly(dir / "bare", {.point_histories = false, .static_pose = false}),
                                     dir / "png_bare");
   EXPECT_TRUE(std::filesystem::is_regular_file(dir / "png_bare" / "assembly_max.png"));
   EXPECT_FALSE(std::filesystem::exists(dir / "png_bare" / "assembly_static.png"));

@@ -36,6 +36,7 @@
 #include "kinetofem/postproc/vibration_results.hpp"
 #include "png_inspect.hpp"
 #include "post_test_results.hpp"
+#include "post_test_calls.hpp"
 #include "postproc_test_meshes.hpp"
 
 namespace kinetofem::post {
@@ -121,13 +122,7 @@ std::filesystem::path write_vibration(const std::filesystem::path& dir, const Co
   return path;
 }
 
-// Where a test's pictures go: KINETOFEM_PNG_KEEP_DIR (kept) or the test's temporary directory.
-std::filesystem::path output_dir(const testing::TemporaryDirectory& dir) {
-  const char* keep = std::getenv("KINETOFEM_PNG_KEEP_DIR");
-  if (!keep || !*keep) return dir.path();
-  std::filesystem::create_directories(keep);
-  return keep;
-}
+using testing::output_dir;
 
 void expect_drawn(const std::filesystem::path& png, int width, int height) {
   const PngStats s = inspect(png);
@@ -135,16 +130,6 @@ void expect_drawn(const std::filesystem::path& png, int width, int height) {
   EXPECT_EQ(s.height, height) << png;
   EXPECT_GT(s.colours, 20u) << png;  // lines in several colours, anti-aliased text
   EXPECT_GT(s.ink, 0.01) << png;
-}
-
-std::string error_of(const auto& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error";
-  return "";
 }
 
 TEST(PostVibration, ContentsOfTheFile) {
@@ -212,16 +197,16 @@ TEST(PostVibration, PointThatDoesNotSettle) {
 TEST(PostVibration, MissingDataIsAnErrorNamingTheFileAndTheData) {
   testing::TemporaryDirectory dir;
   const auto motion = ResultsFile::open(testing::write_synthetic_motion(dir.path()));
-  std::string m = error_of([&] { write_frequency_picture(motion, dir / "f.png"); });
+  std::string m = testing::error_text([&] { write_frequency_picture(motion, dir / "f.png"); });
   EXPECT_NE(m.find(motion.path().string()), std::string::npos) << m;
   EXPECT_NE(m.find("no history vibration.frequency"), std::string::npos) << m;
-  m = error_of([&] { write_point_vibration_picture(motion, dir / "p.png", "H"); });
+  m = testing::error_text([&] { write_point_vibration_picture(motion, dir / "p.png", "H"); });
   EXPECT_NE(m.find(motion.path().string()), std::string::npos) << m;
   EXPECT_NE(m.find("no table vibration.response.point.H.displacement"), std::string::npos) << m;
   EXPECT_NE(m.find("points with a vibration response: none"), std::string::npos) << m;
 
   const auto full = ResultsFile::open(write_vibration(dir.path()));
-  m = error_of([&] { write_point_vibration_picture(full, dir / "p.png", "G"); });
+  m = testing::error_text([&] { write_point_vibration_picture(full, dir / "p.png", "G"); });
   EXPECT_NE(m.find("points with a vibration response: C, H"), std::string::npos) << m;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   EXPECT_FALSE(std::filesystem::exists(dir / "p.png"));
@@ -235,28 +220,10 @@ TEST(PostVibration, StressPictureLeavesTheModeShapeBodiesOut) {
   EXPECT_DOUBLE_EQ(info.max_value, 60e6);
 }
 
-// `kinetofem post FILE --png DIR` through the program's CLI11 registration; returns stdout.
-std::string post_png(const std::filesystem::path& file, const std::filesystem::path& png_dir) {
-  CLI::App app{"kinetofem"};
-  app::CommandContext context;
-  app::add_post_command(app, context);
-  const std::string f = file.string(), d = png_dir.string();
-  const char* argv[] = {"kinetofem", "post", f.c_str(), "--png", d.c_str(), "--image-size", "800x600"};
-  ::testing::internal::CaptureStdout();
-  try {
-    app.parse(7, argv);
-  } catch (...) {
-    ::testing::internal::GetCapturedStdout();
-    throw;
-  }
-  EXPECT_EQ(context.exit_code, 0);
-  return ::testing::internal::GetCapturedStdout();
-}
-
 TEST(PostVibration, PostPrintsTheSummaryAndWritesThePictures) {
   testing::TemporaryDirectory dir;
   const std::filesystem::path png = dir / "png";
-  const std::string out = post_png(write_vibration(dir.path()), png);
+  const std::string out = testing::post_png(write_vibration(dir.path()), png);
   for (const char* name : {"vibration_frequencies.png", "vibration_point_H.png", "vibration_point_C.png",
                            "von_mises_critical.png"})
     EXPECT_TRUE(std::filesystem::is_regular_file(png / name)) << name;
