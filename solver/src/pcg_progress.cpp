@@ -50,18 +50,25 @@ void PcgProgress::start(std::string label, double target, double initial_residua
   initial_residual_ = initial_residual;
   start_s_ = last_line_s_ = clock_();
   reported_ = false;
+  history_.assign(1, initial_residual);
 }
 
 void PcgProgress::iteration(int iterations, double relative_residual) {
   if (interval_s_ < 0.0) return;
+  if (iterations >= 0) {
+    if (history_.size() <= size_t(iterations)) history_.resize(size_t(iterations) + 1, relative_residual);
+    history_[size_t(iterations)] = relative_residual;
+  }
   const double now = clock_();
   const double elapsed = now - start_s_;
   if (elapsed < interval_s_ || (reported_ && now - last_line_s_ < interval_s_)) return;
   last_line_s_ = now;
   reported_ = true;
   ++lines_;
+  const int from = iterations / 2;  // the later half's rate (header)
+  const double from_residual = from < int(history_.size()) ? history_[size_t(from)] : initial_residual_;
   const auto remaining =
-      estimated_remaining_iterations(iterations, initial_residual_, relative_residual, target_);
+      estimated_remaining_iterations(iterations - from, from_residual, relative_residual, target_);
   log_.info("  {}: iteration {}, relative residual {:.1e} (target {:.2g}), {}", label_,
             iterations, relative_residual, target_,
             time_left(remaining, iterations > 0 ? elapsed / double(iterations) : NAN));

@@ -79,6 +79,26 @@ TEST(PcgProgress, PrintsAtMostEveryIntervalOnceTheSolveHasRunThatLong) {
   EXPECT_EQ(progress.lines(), 4);
 }
 
+TEST(PcgProgress, ARiseThenFasterConvergenceIsEstimatedFromTheLaterHalf) {
+  // rho_k = 5 for k <= 20 (the preconditioned residual rises first), then
+  // 5 * 0.7^(k - 20): the target 1e-8 is reached at k = 77 (5 * 0.7^57 < 1e-8
+  // < 5 * 0.7^56), so at k = 40 there are 37 iterations left. The later
+  // half's rate (iterations 20 to 40) gives exactly that; the mean rate
+  // from iteration 0 would say 94 (2.5x).
+  testing::CapturedLog captured;
+  double now_s = 0.0;
+  PcgProgress progress(captured.log(), 0.0, [&] { return now_s; });
+  progress.start("AMG-PCG column 1/1", 1e-8);
+  for (int k = 1; k <= 40; ++k) {
+    now_s += 1.0;
+    progress.iteration(k, k <= 20 ? 5.0 : 5.0 * std::pow(0.7, k - 20));
+  }
+  const auto lines = lines_of(captured.text());
+  ASSERT_EQ(lines.size(), 40u);
+  EXPECT_NE(lines.back().find("~37 s left"), std::string::npos) << lines.back();  // 1 s per iteration
+  EXPECT_EQ(estimated_remaining_iterations(40, 1.0, 5.0 * std::pow(0.7, 20), 1e-8), 94);
+}
+
 TEST(PcgProgress, ZeroIntervalPrintsEveryIterationNegativeNever) {
   testing::CapturedLog captured;
   double now_s = 0.0;
@@ -90,7 +110,8 @@ TEST(PcgProgress, ZeroIntervalPrintsEveryIterationNegativeNever) {
   const auto lines = lines_of(captured.text());
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_NE(lines[0].find("time left unknown"), std::string::npos) << lines[0];
-  EXPECT_NE(lines[1].find("~3.5 s left"), std::string::npos) << lines[1];  // 14 more at 0.25 s
+  // The rate of the later half (iteration 1 to 2: 1.0 -> 0.1): 7 more at 0.25 s.
+  EXPECT_NE(lines[1].find("~1.8 s left"), std::string::npos) << lines[1];
 
   PcgProgress never(captured.log(), -1.0, [&] { return now_s; });
   never.start("AMG-PCG column 1/1", 1e-8);

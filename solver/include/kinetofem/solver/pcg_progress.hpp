@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "kinetofem/core/log.hpp"
 
@@ -36,7 +37,12 @@ double steady_clock_seconds();
 // residual reached. A line is printed when the solve has run at least
 // `interval_s` and the last line is at least `interval_s` old: 0 prints
 // every iteration, a negative interval never. The time left is the
-// estimated remaining iterations times the mean seconds per iteration so far.
+// estimated remaining iterations times the mean seconds per iteration so far;
+// the remaining iterations come from the rate over the LATER HALF of the
+// iterations so far (from iteration i/2 to i): a preconditioned residual
+// often rises first and then converges faster and faster, and a rate from
+// iteration 0 overestimated the time left 2-10x on a 180 k-DoF TET10
+// cantilever. A geometric sequence gives the same (exact) count either way.
 class PcgProgress {
  public:
   PcgProgress(const Log& log, double interval_s, SecondsClock clock = steady_clock_seconds);
@@ -54,6 +60,7 @@ class PcgProgress {
   SecondsClock clock_;
   std::string label_;
   double target_ = 0.0, initial_residual_ = 1.0;
+  std::vector<double> history_;  // relative residual after iteration k (k = 0: the initial one)
   double start_s_ = 0.0, last_line_s_ = 0.0;
   bool reported_ = false;  // a line of the current solve is out
   int lines_ = 0;
