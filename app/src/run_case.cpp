@@ -55,6 +55,21 @@ void add_fatigue_results(RunSummary& s, const std::vector<pipeline::PartFatigue>
   }
 }
 
+// The vibration's key results (Hz, s, mm): the first natural frequency's
+// range over the motion and in the static pose, per tracked point the dynamic
+// amplification, the ringing after the stop and the settling time (inf: never).
+void add_vibration_results(RunSummary& s, const std::optional<structure::VibrationSummary>& v) {
+  if (!v) return;
+  s.extra.push_back({"vibration_min_first_frequency_hz", v->lowest_first_hz});
+  s.extra.push_back({"vibration_max_first_frequency_hz", v->highest_first_hz});
+  if (v->has_static_study) s.extra.push_back({"vibration_static_first_frequency_hz", v->static_frequency_hz(0)});
+  for (const auto& p : v->points) {
+    s.extra.push_back({"vibration_amplification_" + p.name, p.dynamic_amplification});
+    s.extra.push_back({"vibration_after_stop_" + p.name + "_mm", p.amplitude_at_stop_m / kMm});
+    s.extra.push_back({"vibration_settling_time_" + p.name + "_s", p.settling_time_s});
+  }
+}
+
 RunSummary summary_of(const ManipulatorSummary& s) {
   RunSummary r{.type = "manipulator", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
                .max_displacement_m = s.max_displacement_m,
@@ -63,6 +78,7 @@ RunSummary summary_of(const ManipulatorSummary& s) {
                          {"max_drive_torque_nm", s.max_drive_torque_nm},
                          {"min_chain_tension_n", s.min_chain_tension_n}}};
   add_assembly_results(r, s.assembly);
+  add_vibration_results(r, s.vibration);
   add_fatigue_results(r, s.fatigue);
   return r;
 }
@@ -75,6 +91,7 @@ RunSummary summary_of(const LinkageRun& r) {
   if (!r.results.frames.empty() && !r.results.frames.front().chains.empty())
     s.extra.push_back({"min_chain_tension_n", r.min_chain_tension_n});
   add_assembly_results(s, r.assembly);
+  add_vibration_results(s, r.vibration);
   add_fatigue_results(s, r.fatigue);
   return s;
 }

@@ -64,6 +64,30 @@ TEST(ManipulatorJob, LeverChainRunWritesEveryLinkOverTheMotion) {
   EXPECT_TRUE(fs::exists(options.output_dir / "m.xdmf"));
 }
 
+TEST(ManipulatorJob, VibrationKeysRunTheModesAndTheResponseOfH) {
+  const CaseFile c = CaseFile::parse(
+      testing::coarse_manipulator_case("lever_chain", 80.0,
+                                       "[vibration]\nenabled = true\nmodes = 3\ndamping_ratio = 0.05\n"
+                                       "settling_tolerance_mm = 0.001\n"),
+      "case.toml", manipulator_schema());
+  const RunOptions options = quiet_options("kinetofem_manip_vibration");
+  const ManipulatorSummary s = run_manipulator(c, options);
+  ASSERT_TRUE(s.vibration.has_value());
+  EXPECT_EQ(s.vibration->modes, 3);
+  EXPECT_DOUBLE_EQ(s.vibration->damping_ratio, 0.05);
+  EXPECT_DOUBLE_EQ(s.vibration->settling_tolerance_m, 1e-6);
+  EXPECT_EQ(s.vibration->frequency_hz.rows(), 11);
+  EXPECT_GT(s.vibration->lowest_first_hz, 0.0);
+  ASSERT_TRUE(s.vibration->has_static_study);
+  ASSERT_EQ(s.vibration->points.size(), 1u);
+  EXPECT_EQ(s.vibration->points[0].name, "H");
+  EXPECT_GT(s.vibration->points[0].peak_dynamic_m, 0.0);
+  EXPECT_NE(s.vibration->rule_check.find("holds"), std::string::npos) << s.vibration->rule_check;
+  const auto file = post::ResultsFile::open(options.output_dir / "m.h5");
+  EXPECT_EQ(file.read_history("vibration.frequency").values.cols(), 3);
+  EXPECT_EQ(file.read_table("vibration.damping_ratio").values(0, 0), 0.05);
+}
+
 TEST(ManipulatorJob, FactorAboveTheLimitSwitchesToTheIterativeSolverWithTheSameResult) {
   // solver.method = "auto" with a factor limit no link fits: CHOLMOD's symbolic
   // analysis predicts more and every link goes to AMG-PCG. Reference: the same

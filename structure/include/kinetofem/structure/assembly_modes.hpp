@@ -76,8 +76,9 @@ struct PoseModes {
 class AssemblyModes {
  public:
   // Reduces every part of `assembly` once (its shared factorizations); the
-  // automatic cutoff is estimated over `poses` (e.g. the motion's first,
-  // middle and last frames and the static pose). Throws Error for bad
+  // automatic cutoff is estimated over `poses`: give every pose whose modes
+  // will be asked for (the bound holds pose by pose only; the vibration stage
+  // gives every output time and the static pose). Throws Error for bad
   // options, rigid-bore couplings, a part of zero density, an eigen solve
   // that does not converge (vibration::EigenNotConverged names the part).
   AssemblyModes(const ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
