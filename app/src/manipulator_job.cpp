@@ -202,6 +202,7 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   summary.assembly = run.assembly;
   summary.fatigue = run.fatigue;
   summary.vibration = run.vibration;
+  summary.factorization = run.factorization;
   std::printf("\nSummary of '%s' (%s manipulator, %zu output times over %.3f s)\n%s%s", name.c_str(),
               chain ? "lever-chain" : "lever", run.motion.frames.size(), run_case.times.back(),
               pipeline::format_part_table(run.parts).c_str(), me.text.c_str());

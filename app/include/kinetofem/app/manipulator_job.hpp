@@ -16,6 +16,7 @@
 #include "kinetofem/app/jobs.hpp"
 #include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
+#include "kinetofem/pipeline/part_factorization.hpp"
 #include "kinetofem/structure/assembly_over_motion.hpp"
 #include "kinetofem/structure/vibration_over_motion.hpp"
 
@@ -35,6 +36,7 @@ struct ManipulatorSummary {
   // The elastic assembly (assembly.enabled): total deformation, H's deflection.
   std::optional<structure::AssemblySummary> assembly;
   std::optional<structure::VibrationSummary> vibration;  // vibration.enabled
+  pipeline::PartFactorizationReport factorization;       // side by side or one after the other
   std::vector<pipeline::PartFatigue> fatigue;  // fatigue.enabled: one per link
   std::filesystem::path results_file;
   double meshing_seconds = 0, dynamics_seconds = 0, total_seconds = 0;
