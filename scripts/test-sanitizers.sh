@@ -40,6 +40,8 @@ skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAb
 exclude=()
 [[ -n $skip ]] && exclude=(-E "$skip")
 status=0
+# One OpenMP thread per test when several run at once (as in test.sh's release stage).
+if ((jobs > 1)); then export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}; fi
 (cd "$build" && ctest -LE large "${exclude[@]}" --output-on-failure -j "$jobs" "$@") || status=$?
 end=$(date +%s)
 echo "test-sanitizers: build $((built - start)) s, tests $((end - built)) s, total $((end - start)) s"
