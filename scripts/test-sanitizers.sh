@@ -34,9 +34,12 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/test
 # CHOLMOD's METIS (every instrumented solve uses that ordering), and the
 # vibration's monolithic reference (AssemblyModes.*: dense eigen-solves of
 # 1 200-1 300 DoFs in the test itself; the reduced assembly's code runs
-# instrumented in VibrationOverMotion.*).
+# instrumented in VibrationOverMotion.*) and the vibration keys through the
+# whole coarse manipulator job (ManipulatorJob.VibrationKeys..., 67 s here;
+# the same stages run instrumented in VibrationOverMotion.* and
+# ManipulatorJob.LeverChainRun...).
 # Keeps CI under its time limit; KINETOFEM_SANITIZER_SKIP="" runs them too.
-skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.|Superposition\.(LeverManipulator|FieldsAtEveryKth|FieldTimes)|Types/NodeGraphOrderingTest\.|AssemblyModes\.)'}
+skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.|Superposition\.(LeverManipulator|FieldsAtEveryKth|FieldTimes)|Types/NodeGraphOrderingTest\.|AssemblyModes\.|ManipulatorJob\.VibrationKeys)'}
 exclude=()
 [[ -n $skip ]] && exclude=(-E "$skip")
 status=0
