@@ -106,10 +106,10 @@ struct AssemblyModes::Impl {
     return U;
   }
 
-  // An orthonormal basis (scaled back) of the motions C U x = 0 of a pose.
-  MatrixXd admissible(const mech::Frame& frame) const {
-    const InterfaceStructure is = assembly.interface_structure(frame);
-    MatrixXd A = is.constraints * interface_map(frame);
+  // An orthonormal basis (scaled back) of the motions C U x = 0 of a pose
+  // (its structure and interface map, built once by the caller).
+  MatrixXd admissible(const InterfaceStructure& is, const MatrixXd& U) const {
+    MatrixXd A = is.constraints * U;
     // Rotations as length_scale x angle, so that rank decisions compare like with like.
     VectorXd scale = VectorXd::Ones(n);
     for (const auto& p : parts)
@@ -127,12 +127,12 @@ struct AssemblyModes::Impl {
   }
 
   PoseModes solve(const mech::Frame& frame, int count) const {
-    const MatrixXd N = admissible(frame);
+    const InterfaceStructure is = assembly.interface_structure(frame);
+    const MatrixXd U = interface_map(frame);
+    const MatrixXd N = admissible(is, U);
     require(N.cols() >= count,
             "vibration at t = {:.6g} s: the reduced assembly has {} free coordinates, fewer than the {} modes wanted",
             frame.t, N.cols(), count);
-    const InterfaceStructure is = assembly.interface_structure(frame);
-    const MatrixXd U = interface_map(frame);
     MatrixXd Kc = N.transpose() * (K + U.transpose() * is.springs * U) * N;
     MatrixXd Mc = N.transpose() * M * N;
     // Diagonal scaling to unit modal mass (kg, kg m^2 and modal coordinates mixed).
@@ -394,9 +394,9 @@ MatrixXd AssemblyModes::point_rows(const std::string& point, const mech::Frame& 
 
 VectorXd AssemblyModes::static_response(const mech::Frame& frame, const VectorXd& load) const {
   const Impl& im = *impl_;
-  const MatrixXd N = im.admissible(frame);
   const InterfaceStructure is = im.assembly.interface_structure(frame);
   const MatrixXd U = im.interface_map(frame);
+  const MatrixXd N = im.admissible(is, U);
   const MatrixXd Kc = N.transpose() * (im.K + U.transpose() * is.springs * U) * N;
   return N * Kc.ldlt().solve(N.transpose() * load);
 }
