@@ -1,6 +1,7 @@
 #include "kinetofem/driver/motion_to_stress.hpp"
 
 #include <memory>
+#include <optional>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
@@ -87,18 +88,57 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     factorized = factorize_parts(parts, c.stress.solver, log, &run.factorization);
     return 0;
   });
+  std::vector<fem::LinearStaticAnalysis*> shared;  // the parts' factorizations, for steps 6, 8 and after
+  for (const auto& f : factorized) shared.push_back(&f->analysis());
+  // The elastic assembly's topology and checks before the FE work; each
+  // part's interface columns and load patterns are solved right after its
+  // own stage (step 6), while its factor is in memory. Parts whose factors
+  // do not fit in memory together then need one factor at a time: each is
+  // freed after the assembly's solves, which superposition makes the last.
+  require(!c.vibration || c.assembly, "{}: the vibration needs the elastic assembly (assembly.enabled)", c.label);
+  const bool factors_fit_together = run.factorization.predicted_factor_bytes <= run.factorization.limit_bytes;
+  structure::AssemblyOptions assembly_options;
+  std::optional<structure::ElasticAssembly> assembly;
+  if (c.assembly) {
+    assembly_options = *c.assembly;
+    assembly_options.solver = c.stress.solver;
+    assembly_options.field_steps = c.stress.callback_steps;
+    structure::AssemblyOptions run_options =
+        structure::assembly_run_options(assembly_options, run.motion.frames.size() + (run.static_pose ? 1 : 0));
+    run_options.defer_part_setup = true;
+    run_options.release_factors = !c.vibration;  // the vibration's reductions need them after the assembly
+    if (!factors_fit_together) {
+      require(!c.vibration,
+              "{}: the vibration needs the parts' factorizations together ({:.3g} GB predicted), more than the "
+              "{:.3g} GB allowed (solver.max_factor_gb): coarsen the mesh, raise the limit, or set "
+              "vibration.enabled = false",
+              c.label, run.factorization.predicted_factor_bytes * 1e-9, run.factorization.limit_bytes * 1e-9);
+      run_options.superpose_loads = true;  // no pose may need a factor freed before it
+      log.info("elastic assembly: one part's factor in memory at a time (the factors exceed the limit together); "
+               "each is freed after its interface and load-pattern solves");
+    }
+    assembly = in_stage(c, "the elastic assembly cannot be built", [&] {
+      return std::optional<structure::ElasticAssembly>(std::in_place, parts, run.model, run_options, log, shared);
+    });
+  }
   // The stress at every output time, kept for the fatigue stage (when asked).
   std::vector<PartStressHistory> histories(c.fatigue ? parts.size() : 0);
-  in_stage(c, "the stress of the parts cannot be computed or written", [&] {
-    for (std::size_t k = 0; k < parts.size(); ++k) {
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    in_stage(c, "the stress of the parts cannot be computed or written", [&] {
       factorized[k]->analysis().factorize();  // done already when the parts went side by side
       run.parts.push_back(analyse_part_over_motion(parts[k], run.model, run.motion.frames, run.static_pose, writer,
                                                    c.stress, log, factorized[k].get(),
                                                    c.fatigue ? &histories[k] : nullptr));
-      if (!c.assembly) factorized[k].reset();  // no second use: free the factor now
-    }
-    return 0;
-  });
+      return 0;
+    });
+    if (assembly)
+      in_stage(c, "the elastic assembly cannot be solved or written", [&] {
+        assembly->set_up_part(parts[k].body());  // frees the factor when nothing later needs it
+        return 0;
+      });
+    else
+      factorized[k].reset();  // no second use: free the factor now
+  }
   if (c.fatigue)
     in_stage(c, "the fatigue check cannot be done or written", [&] {
       log.info("fatigue: {} parts over {} output times (one work cycle)", parts.size(), run.motion.frames.size());
@@ -113,28 +153,20 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
     return 0;
   });
-  require(!c.vibration || c.assembly, "{}: the vibration needs the elastic assembly (assembly.enabled)", c.label);
-  std::vector<fem::LinearStaticAnalysis*> shared;  // the parts' factorizations, for steps 8 and after
-  for (const auto& f : factorized)
-    if (f) shared.push_back(&f->analysis());
-  structure::AssemblyOptions assembly_options;
-  if (c.assembly) {
-    assembly_options = *c.assembly;
-    assembly_options.solver = c.stress.solver;
-    assembly_options.field_steps = c.stress.callback_steps;
+  if (assembly) {
     log.info("elastic assembly: {} parts, {} output times{}", parts.size(), run.motion.frames.size(),
              run.static_pose ? " + the static study" : "");
     run.assembly = in_stage(c, "the elastic assembly cannot be solved or written", [&] {
-      return structure::analyse_assembly_over_motion(parts, run.model, run.motion.frames, run.static_pose, writer,
-                                                     assembly_options, log, shared);
+      return structure::analyse_assembly_over_motion(*assembly, parts, run.model, run.motion.frames, run.static_pose,
+                                                     writer, assembly_options, log);
     });
   }
   if (c.vibration) {
     log.info("vibration: the modes of the elastic assembly at {} output times{}", run.motion.frames.size(),
              run.static_pose ? " + the static pose" : "");
     run.vibration = in_stage(c, "the vibration cannot be analysed or written", [&] {
-      return structure::analyse_vibration_over_motion(parts, run.model, run.motion.frames, run.static_pose, writer,
-                                                      assembly_options, *c.vibration, *run.assembly, log, shared);
+      return structure::analyse_vibration_over_motion(*assembly, parts, run.model, run.motion.frames, run.static_pose,
+                                                      writer, assembly_options, *c.vibration, *run.assembly, log);
     });
   }
   writer.commit();

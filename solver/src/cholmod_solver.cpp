@@ -234,9 +234,23 @@ void CholmodSolver::factorize(const SymmetricUpperMatrix& matrix) {
                stats_.factorize_seconds, stats_.factorize_gflops(), stats_.reciprocal_condition);
 }
 
+void CholmodSolver::release_factor() {
+  if (!has_numeric_factor()) return;
+  // Supernodal numeric -> supernodal symbolic: the values are freed, the
+  // ordering and the supernodes stay for the next cholmod_l_factorize.
+  const int ok = cholmod_l_change_factor(CHOLMOD_PATTERN, impl_->factor->is_ll, impl_->factor->is_super, /*to_packed=*/1, /*to_monotonic=*/1,
+                                         impl_->factor, &impl_->common);
+  impl_->check("cholmod_l_change_factor");
+  if (!ok) fail("CHOLMOD cholmod_l_change_factor (releasing the factor) failed (status {})", impl_->common.status);
+}
+
+bool CholmodSolver::has_numeric_factor() const {
+  return impl_->factor != nullptr && impl_->factor->xtype != CHOLMOD_PATTERN;
+}
+
 Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& rhs) {
-  require(impl_->factor != nullptr && impl_->matrix != nullptr,
-          "CHOLMOD solve called before factorize");
+  require(has_numeric_factor() && impl_->matrix != nullptr,
+          "CHOLMOD solve called before factorize (or after release_factor)");
   require(rhs.rows() == stats_.equations, "CHOLMOD solve: right-hand side has {} rows, system {}",
           rhs.rows(), stats_.equations);
   require(rhs.allFinite(), "CHOLMOD solve: right-hand side has NaN or Inf entries");

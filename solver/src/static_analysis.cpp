@@ -70,6 +70,12 @@ void LinearStaticAnalysis::factorize() {
   if (!is_factorized()) factorize_direct();
 }
 
+void LinearStaticAnalysis::release_factor() {
+  if (amg_) return;
+  solver_.release_factor();
+  factorized_ = false;
+}
+
 void LinearStaticAnalysis::factorize_direct() {
   try {
     solver_.factorize(stiffness_.free_free);

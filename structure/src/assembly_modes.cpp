@@ -290,7 +290,9 @@ void AssemblyModes::Impl::reduce_parts(const vibration::CraigBamptonOptions& giv
     for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
     vibration::CraigBamptonOptions cbo = given_options;
     cbo.eigen.label = pr.label;
-    pr.cb = vibration::reduce_craig_bampton(assembly.supported_analysis(pr.body), interfaces, cbo, &log);
+    fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(pr.body);
+    analysis.factorize();  // a no-op unless the elastic assembly freed it (AssemblyOptions::release_factors)
+    pr.cb = vibration::reduce_craig_bampton(analysis, interfaces, cbo, &log);
     require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
             "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,
             pr.cb.constraint_modes.rows(), 3 * pr.mesh->node_count());

@@ -56,14 +56,29 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
   require(!parts.empty(),
           "elastic assembly: the linkage has no part: an assembly needs at least one body with an FE part "
           "(set assembly.enabled = false for a rigid-body run)");
+  ElasticAssembly assembly(parts, model, assembly_run_options(options, motion.size() + (static_pose ? 1 : 0)), log,
+                           factorized);
+  return analyse_assembly_over_motion(assembly, parts, model, motion, static_pose, writer, options, log);
+}
+
+AssemblyOptions assembly_run_options(const AssemblyOptions& options, size_t poses) {
   // The load patterns cost 12 + 6 k solves and stress recoveries per part,
   // besides the 6 m interface columns' stresses (30 to 40 for the SPEC
   // manipulators): below kMinSuperposedPoses poses one solve per pose is
   // cheaper, and exact either way.
   AssemblyOptions run_options = options;
-  const size_t poses = motion.size() + (static_pose ? 1 : 0);
   if (poses < kMinSuperposedPoses) run_options.superpose_loads = false;
-  ElasticAssembly assembly(parts, model, run_options, log, factorized);
+  return run_options;
+}
+
+AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+                                             const mech::MultibodyModel& model,
+                                             const std::vector<mech::Frame>& motion,
+                                             const std::optional<mech::Frame>& static_pose,
+                                             post::ResultsWriter& writer, const AssemblyOptions& options,
+                                             const Log& log) {
+  require(!motion.empty(), "elastic assembly: no output times to analyse");
+  require(assembly.is_set_up(), "elastic assembly: not every part is set up (ElasticAssembly::set_up_part)");
   AssemblySummary summary;
   const size_t T = motion.size();
 

@@ -106,6 +106,7 @@ struct ElasticAssembly::Impl {
     // stresses of Z_G's and Z_p's columns (6N x 6m, 6N x p), so a pose costs
     // products with its coefficients, not a solve and a stress recovery.
     bool superposed = false;
+    bool set_up = false;  // set_up_part done
     Eigen::MatrixXd Zp, SG, Sp, GtZp;  // GtZp = G^T Z_p (6m x p)
     Eigen::Matrix<double, 6, Eigen::Dynamic> Rp;
   };
@@ -325,6 +326,9 @@ struct ElasticAssembly::Impl {
                   const std::vector<FieldInputs>& inputs, const std::vector<Eigen::MatrixXd>& load_displacement,
                   const std::vector<Eigen::MatrixXd>& coefficients);
   void set_up_load_patterns(PartData& part);
+  void solve_interface_columns(PartData& part);
+  void set_up_part(PartData& part);
+  void require_set_up() const;
   [[noreturn]] void explain_rank_deficiency(const mech::Frame& frame, const Pose& pose, const Eigen::MatrixXd& kernel,
                                             const Eigen::VectorXd& unscale, int rank, int n,
                                             const std::vector<std::string>& row_owner) const;
@@ -504,58 +508,77 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     points.push_back(pd);
   }
 
-  // Per part: factorization, interface columns, Z_G, flexibility.
-  for (auto& part : parts) {
-    fem::FeModel& fe = part->supported;
-    const fem::Index dofs = 3 * fe.mesh.node_count();
-    log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part->body, fe.mesh.node_count(),
-             part->interfaces.size());
-    if (part->given_analysis) {
-      part->analysis = part->given_analysis;
-    } else {
-      part->own_analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
-      part->analysis = part->own_analysis.get();
-    }
-    const Eigen::Index m = Eigen::Index(part->interfaces.size());
-    if (options.coupling == BoreCoupling::RigidBore) {
-      std::vector<RigidBoreInterface> bores;
-      for (const int g : part->interfaces) bores.push_back({interfaces[size_t(g)].face_set, interfaces[size_t(g)].reference});
-      try {
-        part->rigid = std::make_unique<RigidBoreCondensation>(*part->analysis, fe.mesh, bores, log);
-      } catch (const Error& e) {
-        fail("{}: rigid-bore couplings: {}", part->label, e.what());
-      }
-      part->G = part->rigid->loads();
-      part->ZG = part->rigid->load_displacement();
-      part->F = part->rigid->flexibility();
-      part->F = 0.5 * (part->F + part->F.transpose()).eval();
-      stats.part_dofs += long(dofs);
-      stats.interface_columns += long(part->rigid->statistics().setup_solves);
-      if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
-      continue;
-    }
-    part->G = Eigen::MatrixXd::Zero(dofs, 6 * m);
-    for (Eigen::Index l = 0; l < m; ++l) {
-      const Vector3d& X = interfaces[size_t(part->interfaces[size_t(l)])].reference;
-      for (int c = 0; c < 3; ++c) {
-        part->couplings[size_t(l)]->add(Vector3d::Unit(c), Vector3d::Zero(), X, part->G.col(6 * l + c));
-        part->couplings[size_t(l)]->add(Vector3d::Zero(), Vector3d::Unit(c), X, part->G.col(6 * l + 3 + c));
-      }
-    }
-    part->ZG = solve_columns(*part->analysis, part->G);
-    part->F = part->G.transpose() * part->ZG;
-    part->F = 0.5 * (part->F + part->F.transpose()).eval();
-    stats.part_dofs += long(dofs);
-    stats.interface_columns += long(6 * m);
-    if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
-  }
-  if (options.superpose_loads)
-    for (auto& part : parts)
-      if (part->loads->superposable()) set_up_load_patterns(*part);
   stats.elastic_parts = int(parts.size());
   stats.rigid_bodies = moving_count - int(parts.size());
   stats.interfaces = int(interfaces.size());
   stats.setup_seconds = clock.seconds();
+  if (!options.defer_part_setup)
+    for (auto& part : parts) set_up_part(*part);
+}
+
+// The part's factorization (given, or made here; made again if it was
+// freed), its interface columns G, Z_G = K_s^-1 G and flexibility G^T Z_G.
+void ElasticAssembly::Impl::solve_interface_columns(PartData& data) {
+  PartData* const part = &data;
+  fem::FeModel& fe = part->supported;
+  const fem::Index dofs = 3 * fe.mesh.node_count();
+  log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part->body, fe.mesh.node_count(),
+           part->interfaces.size());
+  if (part->given_analysis) {
+    part->analysis = part->given_analysis;
+  } else {
+    part->own_analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
+    part->analysis = part->own_analysis.get();
+  }
+  part->analysis->factorize();  // a no-op unless deferred or freed
+  const Eigen::Index m = Eigen::Index(part->interfaces.size());
+  if (options.coupling == BoreCoupling::RigidBore) {
+    std::vector<RigidBoreInterface> bores;
+    for (const int g : part->interfaces) bores.push_back({interfaces[size_t(g)].face_set, interfaces[size_t(g)].reference});
+    try {
+      part->rigid = std::make_unique<RigidBoreCondensation>(*part->analysis, fe.mesh, bores, log);
+    } catch (const Error& e) {
+      fail("{}: rigid-bore couplings: {}", part->label, e.what());
+    }
+    part->G = part->rigid->loads();
+    part->ZG = part->rigid->load_displacement();
+    part->F = part->rigid->flexibility();
+    part->F = 0.5 * (part->F + part->F.transpose()).eval();
+    stats.part_dofs += long(dofs);
+    stats.interface_columns += long(part->rigid->statistics().setup_solves);
+    if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+    return;
+  }
+  part->G = Eigen::MatrixXd::Zero(dofs, 6 * m);
+  for (Eigen::Index l = 0; l < m; ++l) {
+    const Vector3d& X = interfaces[size_t(part->interfaces[size_t(l)])].reference;
+    for (int c = 0; c < 3; ++c) {
+      part->couplings[size_t(l)]->add(Vector3d::Unit(c), Vector3d::Zero(), X, part->G.col(6 * l + c));
+      part->couplings[size_t(l)]->add(Vector3d::Zero(), Vector3d::Unit(c), X, part->G.col(6 * l + 3 + c));
+    }
+  }
+  part->ZG = solve_columns(*part->analysis, part->G);
+  part->F = part->G.transpose() * part->ZG;
+  part->F = 0.5 * (part->F + part->F.transpose()).eval();
+  stats.part_dofs += long(dofs);
+  stats.interface_columns += long(6 * m);
+  if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+}
+
+// Per part: factorization, interface columns, Z_G, flexibility, the load
+// patterns; then the factor freed when nothing later needs it.
+void ElasticAssembly::Impl::set_up_part(PartData& data) {
+  require(!data.set_up, "elastic assembly: {} is set up already", data.label);
+  Stopwatch clock;
+  solve_interface_columns(data);
+  if (options.superpose_loads && data.loads->superposable()) set_up_load_patterns(data);
+  if (options.release_factors && data.superposed) {
+    // No later solve: a pose costs products with the solved columns only.
+    data.analysis->release_factor();
+    log.info("elastic assembly: part '{}': columns solved, its factor freed", data.body);
+  }
+  data.set_up = true;
+  stats.setup_seconds += clock.seconds();
 }
 
 // ---------------------------------------------------------------------------
@@ -1078,6 +1101,7 @@ PoseSolution ElasticAssembly::solve(const mech::Frame& frame) {
 std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>& frames) {
   Impl& im = *impl_;
   require(!frames.empty(), "elastic assembly: no poses to solve");
+  im.require_set_up();
   std::vector<PoseSolution> out;
   out.reserve(frames.size());
   const size_t block = 32;
@@ -1212,7 +1236,24 @@ InterfaceStructure ElasticAssembly::interface_structure(const mech::Frame& frame
   return out;
 }
 
+void ElasticAssembly::Impl::require_set_up() const {
+  for (const auto& p : parts)
+    require(p->set_up, "elastic assembly: {} is not set up yet (AssemblyOptions::defer_part_setup: call set_up_part)",
+            p->label);
+}
+
+void ElasticAssembly::set_up_part(const std::string& body) {
+  for (auto& p : impl_->parts)
+    if (p->body == body) return impl_->set_up_part(*p);
+  fail("elastic assembly: body '{}' has no elastic part", body);
+}
+
+bool ElasticAssembly::is_set_up() const {
+  return std::all_of(impl_->parts.begin(), impl_->parts.end(), [](const auto& p) { return p->set_up; });
+}
+
 const Eigen::MatrixXd& ElasticAssembly::interface_columns(const std::string& body) const {
+  impl_->require_set_up();
   const Impl::PartData& part = impl_->part_of(body);
   require(!part.rigid,
           "{}: the interface columns of rigid-bore couplings are not the couplings' motion; the modes of the "
@@ -1222,6 +1263,7 @@ const Eigen::MatrixXd& ElasticAssembly::interface_columns(const std::string& bod
 }
 
 fem::LinearStaticAnalysis& ElasticAssembly::supported_analysis(const std::string& body) const {
+  impl_->require_set_up();
   return *impl_->part_of(body).analysis;
 }
 
@@ -1243,6 +1285,7 @@ std::vector<Vector6d> ElasticAssembly::body_loads(const mech::Frame& frame) cons
 }
 
 Eigen::MatrixXd ElasticAssembly::flexibility(const std::string& body) const {
+  impl_->require_set_up();
   for (const auto& p : impl_->parts)
     if (p->body == body) return p->F;
   fail("elastic assembly: body '{}' has no elastic part", body);

@@ -91,6 +91,27 @@ VibrationSummary analyse_vibration_over_motion(const std::vector<pipeline::Part>
                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
                                                const Log& log,
                                                const std::vector<fem::LinearStaticAnalysis*>& factorized) {
+  // The reduced assembly needs the interface columns and the factorizations
+  // only: no stress, no load patterns (the frequencies and loads come from the
+  // reduced model).
+  AssemblyOptions structure_options = assembly_options;
+  structure_options.recover_stress = false;
+  structure_options.superpose_loads = false;
+  structure_options.unit_load_split = false;
+  structure_options.field_steps.clear();
+  const ElasticAssembly assembly(parts, model, structure_options, log, factorized);
+  return analyse_vibration_over_motion(assembly, parts, model, motion, static_pose, writer, assembly_options, options,
+                                       quasi_static, log);
+}
+
+VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
+                                               const std::vector<pipeline::Part>& parts,
+                                               const mech::MultibodyModel& model,
+                                               const std::vector<mech::Frame>& motion,
+                                               const std::optional<mech::Frame>& static_pose,
+                                               post::ResultsWriter& writer, const AssemblyOptions& assembly_options,
+                                               const VibrationOptions& options, const AssemblySummary& quasi_static,
+                                               const Log& log) {
   require(options.damping_ratio >= 0 && options.damping_ratio < 1,
           "vibration: damping ratio {} must lie in [0, 1)", options.damping_ratio);
   require(options.settling_tolerance_m > 0 && std::isfinite(options.settling_tolerance_m),
@@ -108,15 +129,8 @@ VibrationSummary analyse_vibration_over_motion(const std::vector<pipeline::Part>
   summary.stop_time_s = motion.back().t;
 
   // 1. The reduced assembly: one reduction per part, with the part's own
-  // factorization (no stress, no load patterns: the frequencies and loads
-  // come from the reduced model).
+  // factorization.
   Stopwatch clock;
-  AssemblyOptions structure_options = assembly_options;
-  structure_options.recover_stress = false;
-  structure_options.superpose_loads = false;
-  structure_options.unit_load_split = false;
-  structure_options.field_steps.clear();
-  const ElasticAssembly assembly(parts, model, structure_options, log, factorized);
   // The automatic part-mode rule bounds the frequencies wanted in every pose
   // (Rayleigh-Ritz holds pose by pose): estimate over all of them (0.3 ms each).
   std::vector<mech::Frame> estimate_poses = motion;

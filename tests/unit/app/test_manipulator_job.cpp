@@ -5,6 +5,8 @@
 
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/postproc/results_file.hpp"
@@ -86,6 +88,52 @@ TEST(ManipulatorJob, VibrationKeysRunTheModesAndTheResponseOfH) {
   const auto file = post::ResultsFile::open(options.output_dir / "m.h5");
   EXPECT_EQ(file.read_history("vibration.frequency").values.cols(), 3);
   EXPECT_EQ(file.read_table("vibration.damping_ratio").values(0, 0), 0.05);
+}
+
+TEST(ManipulatorJob, FactorsThatDoNotFitTogetherAreMadeOneAtATimeWithTheSameResult) {
+  // solver.max_factor_gb below the links' factors together but above each:
+  // one factor in memory at a time, each freed after the elastic assembly's
+  // solves of its link (driver). Reference: the same case with the default
+  // limit (factors side by side, all kept). The per-link path is the same
+  // arithmetic on the same factor: equal. The assembly superposes its loads
+  // in the limited run (11 output times: one solve per pose otherwise), exact
+  // up to round-off: 1e-9 relative.
+  const std::string base = testing::coarse_manipulator_case("lever_chain", 80.0);
+  const ManipulatorSummary together = run_manipulator(CaseFile::parse(base, "case.toml", manipulator_schema()),
+                                                      quiet_options("kinetofem_manip_together"));
+  ASSERT_GT(together.factorization.predicted_factor_bytes, 0.0);
+  const double limit_gb = 0.75 * together.factorization.predicted_factor_bytes * 1e-9;
+  const std::string limited = base + fmt::format("[solver]\nmax_factor_gb = {:.17g}\n", limit_gb);
+  const ManipulatorSummary apart = run_manipulator(CaseFile::parse(limited, "case.toml", manipulator_schema()),
+                                                   quiet_options("kinetofem_manip_apart"));
+  EXPECT_EQ(apart.factorization.side_by_side, 1);
+  EXPECT_NE(apart.factorization.why.find("exceed"), std::string::npos) << apart.factorization.why;
+  ASSERT_EQ(apart.links.size(), together.links.size());
+  for (size_t k = 0; k < apart.links.size(); ++k) {
+    EXPECT_FALSE(apart.links[k].iterative_solver) << apart.links[k].body;
+    EXPECT_EQ(apart.links[k].peak_von_mises_pa, together.links[k].peak_von_mises_pa) << apart.links[k].body;
+    EXPECT_EQ(apart.links[k].peak_displacement_m, together.links[k].peak_displacement_m) << apart.links[k].body;
+  }
+  ASSERT_TRUE(apart.assembly && together.assembly);
+  const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
+  EXPECT_TRUE(near(apart.assembly->max_displacement_m, together.assembly->max_displacement_m))
+      << apart.assembly->max_displacement_m << " vs " << together.assembly->max_displacement_m;
+  EXPECT_TRUE(near(apart.assembly->static_max_displacement_m, together.assembly->static_max_displacement_m));
+  ASSERT_EQ(apart.assembly->points.size(), 1u);
+  EXPECT_TRUE(near(apart.assembly->points[0].max_displacement_m, together.assembly->points[0].max_displacement_m));
+  for (size_t p = 0; p < apart.assembly->parts.size(); ++p)
+    EXPECT_TRUE(near(apart.assembly->parts[p].max_von_mises_pa, together.assembly->parts[p].max_von_mises_pa))
+        << apart.assembly->parts[p].body;
+
+  // The vibration needs every factor at once: a clear error before any numeric work.
+  try {
+    run_manipulator(CaseFile::parse(limited + "[vibration]\nenabled = true\n", "case.toml", manipulator_schema()),
+                    quiet_options("kinetofem_manip_apart_vibration"));
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the vibration needs the parts' factorizations together"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ManipulatorJob, FactorAboveTheLimitSwitchesToTheIterativeSolverWithTheSameResult) {

@@ -97,6 +97,44 @@ TEST(ElasticAssembly, SolvesEveryPoseWithOneSetupAndReportsTheCost) {
             1e-14 * poses[1].max_displacement_m);
 }
 
+TEST(ElasticAssembly, PartsSetUpOneAtATimeWithTheirFactorsFreedGiveTheSameSolution) {
+  // AssemblyOptions::defer_part_setup + release_factors (the driver's path
+  // for parts whose factors do not fit in memory together). Reference: the
+  // assembly set up at construction; the same solves in the same order, so
+  // the same numbers bit for bit.
+  const Arm a = arm();
+  ElasticAssembly reference(a.parts, a.model);
+  AssemblyOptions deferred;
+  deferred.defer_part_setup = true;
+  deferred.release_factors = true;
+  ElasticAssembly assembly(a.parts, a.model, deferred);
+  EXPECT_FALSE(assembly.is_set_up());
+  EXPECT_NE(error_of([&] { assembly.solve(a.frames); }).find("not set up yet"), std::string::npos);
+  assembly.set_up_part("link1");
+  // Everything but set_up_part needs every part set up.
+  EXPECT_NE(error_of([&] { assembly.flexibility("link1"); }).find("not set up yet"), std::string::npos);
+  assembly.set_up_part("link2");
+  EXPECT_TRUE(assembly.is_set_up());
+  EXPECT_NE(error_of([&] { assembly.set_up_part("link2"); }).find("set up already"), std::string::npos);
+  EXPECT_NE(error_of([&] { assembly.set_up_part("frame"); }).find("no elastic part"), std::string::npos);
+  EXPECT_FALSE(assembly.supported_analysis("link1").is_factorized());  // freed
+  EXPECT_FALSE(assembly.supported_analysis("link2").is_factorized());
+  const std::vector<PoseSolution> expected = reference.solve(a.frames);
+  const std::vector<PoseSolution> got = assembly.solve(a.frames);
+  ASSERT_EQ(got.size(), expected.size());
+  for (size_t f = 0; f < got.size(); ++f)
+    for (const std::string body : {"link1", "link2"}) {
+      EXPECT_EQ((got[f].part(body).displacement_m - expected[f].part(body).displacement_m).cwiseAbs().maxCoeff(), 0.0)
+          << body << " pose " << f;
+      EXPECT_EQ((got[f].part(body).von_mises_pa - expected[f].part(body).von_mises_pa).cwiseAbs().maxCoeff(), 0.0)
+          << body << " pose " << f;
+    }
+  // A user of the freed factorization makes it again (the vibration's reductions do).
+  fem::LinearStaticAnalysis& analysis = assembly.supported_analysis("link1");
+  analysis.factorize();
+  EXPECT_TRUE(analysis.is_factorized());
+}
+
 TEST(ElasticAssembly, DisplacementIncludesTheRigidMotionFromTheJoints) {
   // A compliant drive d1 lets link1 turn about J1: link2's tip moves by about
   // the drive's twist times the distance from J1, far more than the

@@ -116,6 +116,11 @@ class CholmodSolver {
   void factorize(const SymmetricUpperMatrix& matrix);
   // X = K^{-1} B for all columns of B at once.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs);
+  // Frees the numeric factor (its memory, statistics().factor_bytes) and keeps
+  // the symbolic analysis: factorize() makes the same factor again, bit for
+  // bit. solve() is an Error until then. A no-op before factorize().
+  void release_factor();
+  bool has_numeric_factor() const;
 
   const CholmodStatistics& statistics() const { return stats_; }
 

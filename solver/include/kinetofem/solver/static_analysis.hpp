@@ -64,6 +64,13 @@ class LinearStaticAnalysis {
   // workspace); BLAS threads are the caller's choice (blas_threads.hpp).
   void factorize();
   bool is_factorized() const { return amg_ != nullptr || factorized_; }
+  // Direct path: frees the numeric factor (the largest memory of a part) and
+  // keeps the assembled stiffness and the symbolic analysis, so that
+  // factorize() makes the same factor again (bit for bit) if it is needed
+  // later; solve() is an Error until then. The iterative path keeps its AMG
+  // hierarchy (a no-op). E.g. pipeline: a part's factor freed after its last
+  // solve when the parts' factors do not fit in memory together.
+  void release_factor();
 
   // Displacement (N x 3, m) for each load case, in the order given (factorize() first
   // when it was deferred).

@@ -95,6 +95,22 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& 
                                              const Log& log,
                                              const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
 
+// The same on an assembly made (and set up) by the caller with
+// assembly_run_options(options, poses), e.g. one whose parts were set up one
+// at a time while their factors were in memory (driver). `options` as given
+// to it (points, field steps).
+AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+                                             const mech::MultibodyModel& model,
+                                             const std::vector<mech::Frame>& motion,
+                                             const std::optional<mech::Frame>& static_pose,
+                                             post::ResultsWriter& writer, const AssemblyOptions& options,
+                                             const Log& log);
+
+// The options analyse_assembly_over_motion runs its assembly with for this
+// many poses (output times + the static study): unit-load superposition only
+// from 64 poses up (below, one solve per pose is cheaper; exact either way).
+AssemblyOptions assembly_run_options(const AssemblyOptions& options, size_t poses);
+
 // One line per tracked point, the total deformation and the indeterminacy,
 // in mm, um/N and %, for the run's summary.
 std::string format_assembly_summary(const AssemblySummary& summary);

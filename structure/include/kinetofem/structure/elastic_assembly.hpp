@@ -135,6 +135,15 @@ struct AssemblyOptions {
   // Output times whose fields analyse_assembly_over_motion writes (mask over
   // the motion; empty = all); histories and envelopes cover every one.
   std::vector<bool> field_steps;
+  // Construction stops after the topology and the checks: each part's
+  // interface columns and load patterns are solved by set_up_part(body), e.g.
+  // right after the part's per-part stage while its factor is in memory
+  // (driver: parts whose factors do not fit in memory together).
+  bool defer_part_setup = false;
+  // After a part's set-up solves, free its factor
+  // (fem::LinearStaticAnalysis::release_factor) when it superposes its loads,
+  // so no pose needs it. A later user of supported_analysis() must factorize() again.
+  bool release_factors = false;
 };
 
 // Rigid motion alpha of a moving body (world axes): translation of its frame
@@ -290,6 +299,11 @@ class ElasticAssembly {
                   const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
   ~ElasticAssembly();
   ElasticAssembly(ElasticAssembly&&) noexcept;
+  // The part's solves (its factorization first when deferred or freed), when
+  // AssemblyOptions::defer_part_setup left them; each part once (else Error).
+  // Everything below, solve() included, needs every part set up (else Error).
+  void set_up_part(const std::string& body);
+  bool is_set_up() const;
   ElasticAssembly& operator=(ElasticAssembly&&) noexcept;
 
   // One pose / several poses (the parts' load solves in one block). The frames

@@ -123,6 +123,19 @@ VibrationSummary analyse_vibration_over_motion(const std::vector<pipeline::Part>
                                                const Log& log,
                                                const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
 
+// The same on the caller's (set-up) assembly, e.g. the one the quasi-static
+// stage ran (driver): its parts' interface columns are not solved again. Its
+// parts' factorizations must still be there (AssemblyOptions::release_factors
+// off), or each is made again for its reduction.
+VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
+                                               const std::vector<pipeline::Part>& parts,
+                                               const mech::MultibodyModel& model,
+                                               const std::vector<mech::Frame>& motion,
+                                               const std::optional<mech::Frame>& static_pose,
+                                               post::ResultsWriter& writer, const AssemblyOptions& assembly_options,
+                                               const VibrationOptions& options, const AssemblySummary& quasi_static,
+                                               const Log& log);
+
 // The frequencies, amplification and settling in a few lines (Hz, mm, s).
 std::string format_vibration_summary(const VibrationSummary& summary);
 
