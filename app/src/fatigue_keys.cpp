@@ -90,7 +90,10 @@ void add_fatigue_keys(std::vector<KeySpec>& s) {
 
 std::optional<pipeline::FatigueSettings> read_fatigue(const CaseFile& c, const std::vector<std::string>& bodies_with_parts) {
   if (!c.boolean("fatigue.enabled")) {
-    // Keys without the check would be silently unused.
+    // Keys without the check would be silently unused: a mistake, unless
+    // `enabled = false` is written (or --set): the check is off on purpose
+    // and its settings are kept for when it is on again.
+    if (c.has("fatigue.enabled")) return std::nullopt;
     for (const char* key : {"fatigue.stress_measure", "fatigue.detail_category_mpa", "fatigue.mean_stress",
                             "fatigue.gamma_ff", "fatigue.gamma_mf", "fatigue.cycles_per_hour", "fatigue.service_life_h",
                             "fatigue.cycles"})

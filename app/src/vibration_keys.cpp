@@ -43,9 +43,13 @@ void add_vibration_keys(std::vector<KeySpec>& s) {
 std::optional<structure::VibrationOptions> read_vibration(const CaseFile& c,
                                                           const std::optional<structure::AssemblyOptions>& assembly) {
   if (!c.boolean("vibration.enabled")) {
-    for (const char* key : {"vibration.modes", "vibration.part_mode_cutoff_hz", "vibration.cutoff_factor",
-                            "vibration.damping_ratio", "vibration.settling_tolerance_mm"})
-      require(!c.has(key), "{}: set vibration.enabled = true to use it", c.where(key));
+    // A key without `enabled` would be silently unused: a mistake. With
+    // `enabled = false` written (or --set) the stage is off on purpose and its
+    // settings are kept for when it is on again.
+    if (!c.has("vibration.enabled"))
+      for (const char* key : {"vibration.modes", "vibration.part_mode_cutoff_hz", "vibration.cutoff_factor",
+                              "vibration.damping_ratio", "vibration.settling_tolerance_mm"})
+        require(!c.has(key), "{}: set vibration.enabled = true to use it", c.where(key));
     return std::nullopt;
   }
   require(assembly.has_value(),

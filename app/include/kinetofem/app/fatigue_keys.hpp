@@ -31,8 +31,8 @@ void add_fatigue_keys(std::vector<KeySpec>& schema);
 // Empty when fatigue.enabled is false. Throws Error naming file, key and
 // value for: a detail category not of EN 1993-1-9 (the message lists them),
 // both service_life_h and cycles, a service life shorter than one work cycle,
-// fatigue.detail on a body without a part, fatigue keys without
-// fatigue.enabled. (Rates <= 0 and partial factors below 1 are range errors
+// fatigue.detail on a body without a part, fatigue keys in a file
+// without fatigue.enabled (with `enabled = false` written they are unused). (Rates <= 0 and partial factors below 1 are range errors
 // of the schema.) The sets of fatigue.detail are checked against the meshes
 // by the driver (pipeline::check_fatigue_details).
 std::optional<pipeline::FatigueSettings> read_fatigue(const CaseFile& case_file,

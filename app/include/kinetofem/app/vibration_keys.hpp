@@ -23,7 +23,8 @@ namespace kinetofem::app {
 void add_vibration_keys(std::vector<KeySpec>& schema);
 
 // Empty when vibration.enabled is false. Throws Error naming file, key and
-// value for: vibration keys without vibration.enabled, vibration without the
+// value for: vibration keys in a file without vibration.enabled (with
+// `enabled = false` written they are unused), vibration without the
 // elastic assembly (assembly.enabled = false) or with rigid-bore couplings,
 // a damping ratio of 1 or more. (modes < 1, a negative ratio, a tolerance
 // <= 0 are range errors of the schema.)
