@@ -9,6 +9,7 @@
 
 #include "kinetofem/app/commands.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/core/version.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 
@@ -16,6 +17,8 @@ int main(int argc, char** argv) {
   // A file-size limit (a full disk, simulated or real) must end in a clear
   // error from the writer, not in a kill by SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
+  // Memory freed during a run (a part's factor) goes back to the system.
+  kinetofem::return_freed_memory_to_the_system();
   CLI::App app{"kinetofem: kinematic, kinetostatic and finite-element analysis of robot "
                "manipulator mechanisms"};
   app.set_version_flag("--version", std::string("kinetofem ") + kinetofem::kVersion + " (" +

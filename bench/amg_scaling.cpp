@@ -5,7 +5,8 @@
 // the command line (default auto: CHOLMOD's symbolic analysis decides). See
 // bench/README.md.
 //
-//   amg_scaling [SIZE=2.5M] [--type tet10|hex20] [--rhs N=1] [--method auto|iterative|direct]
+//   amg_scaling [SIZE=2.5M] [--type tet10|hex20] [--rhs N=1] [--method auto|iterative|direct] [--rbm]
+//   --rbm: the rigid rotations as AMG interpolation vectors (AmgOptions::rigid_body_modes)
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/testing/box_mesh.hpp"
@@ -41,10 +43,12 @@ double parse_size(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  kinetofem::return_freed_memory_to_the_system();  // as the program does (core/process_memory.hpp)
   double target = 2.5e6;
   ElementType type = ElementType::Tet10;
   int rhs = 1;
   std::string method = "auto";
+  bool rigid_body_modes = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--type" && i + 1 < argc) {
@@ -54,6 +58,8 @@ int main(int argc, char** argv) {
       rhs = std::max(1, std::atoi(argv[++i]));
     } else if (arg == "--method" && i + 1 < argc) {
       method = argv[++i];
+    } else if (arg == "--rbm") {
+      rigid_body_modes = true;
     } else {
       target = parse_size(arg);
     }
@@ -85,16 +91,18 @@ int main(int argc, char** argv) {
     cases.push_back(load);
   }
   const double mesh_seconds = total.seconds();
-  std::printf("# amg_scaling: %s box 8n x n x n, n = %d, %lld nodes, target %.3g DoFs, method %s, "
+  std::printf("# amg_scaling: %s box 8n x n x n, n = %d, %lld nodes, target %.3g DoFs, method %s%s, "
               "%ld cores online\n",
               name_of(type), n, static_cast<long long>(model.mesh.node_count()), target,
-              method.c_str(), sysconf(_SC_NPROCESSORS_ONLN));
+              method.c_str(), rigid_body_modes ? ", rigid-body modes as interpolation vectors" : "",
+              sysconf(_SC_NPROCESSORS_ONLN));
   std::fflush(stdout);
 
   StaticSolverOptions options;
   options.method = method == "direct"      ? LinearSolverMethod::Direct
                    : method == "iterative" ? LinearSolverMethod::Iterative
                                            : LinearSolverMethod::Auto;
+  options.iterative.rigid_body_modes = rigid_body_modes;
   try {
     LinearStaticAnalysis analysis(model, log, options);
     const auto u = analysis.solve(cases);

@@ -45,6 +45,7 @@
 
 #include <unistd.h>
 
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/solver/calculix_export.hpp"
@@ -314,6 +315,7 @@ void compare(ElementType type, long long target_dofs, const Options& options, co
 }  // namespace
 
 int main(int argc, char** argv) {
+  kinetofem::return_freed_memory_to_the_system();  // as the program does (core/process_memory.hpp)
   try {
     Options options;
     for (int i = 1; i < argc; ++i) {

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/solver/assembly.hpp"
@@ -163,6 +164,7 @@ void run(ElementType type, long long target_dofs, int block_rhs, double dgemm, c
 }  // namespace
 
 int main(int argc, char** argv) {
+  kinetofem::return_freed_memory_to_the_system();  // as the program does (core/process_memory.hpp)
   try {
     std::vector<long long> sizes;
     std::vector<ElementType> types = {ElementType::Hex20, ElementType::Tet10, ElementType::Hex8};

@@ -3,8 +3,10 @@
 // factorization, block solves over all output times, stress recovery — with
 // DoFs, nnz(L), factor memory, flops and the peak memory of the process.
 //
-//   bench/manipulator_cycle [CASE.toml] [element_size_mm ...]
+//   bench/manipulator_cycle [CASE.toml] [element_size_mm ...] [--set KEY=VALUE ...]
 //   e.g. build/bench/manipulator_cycle cases/lever_chain_manipulator/case.toml 8 4 3
+//        build/bench/manipulator_cycle cases/lever_manipulator/case.toml 3.2 --set vibration.enabled=false
+//   --set: case keys overridden as by `kinetofem run --set`, after the mesh size.
 //
 // Each size runs in a child process so its peak memory (ru_maxrss) is its own.
 #include <dlfcn.h>
@@ -22,6 +24,7 @@
 
 #include <fmt/format.h>
 
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
 #include "kinetofem/core/error.hpp"
@@ -57,7 +60,7 @@ double peak_rss_gb() {
   return double(usage.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss is in KiB on Linux
 }
 
-int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s) {
+int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s, const std::vector<std::string>& overrides) {
   using namespace kinetofem::app;
   CaseFile base = CaseFile::load(case_path, manipulator_schema());
   std::string text = base.text();
@@ -68,7 +71,7 @@ int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s) {
   if (at == std::string::npos) kinetofem::fail("{}: no mesh.element_size_mm line to override", case_path);
   const auto end = text.find('\n', at);
   text.replace(at, end - at, key + " = " + std::to_string(size_mm));
-  const CaseFile c = CaseFile::parse(text, case_path, manipulator_schema());
+  const CaseFile c = CaseFile::parse(text, case_path, manipulator_schema(), false, overrides);
   RunOptions options;
   options.output_dir = std::filesystem::temp_directory_path() / "kinetofem_bench_cycle";
   options.quiet = true;
@@ -139,11 +142,20 @@ int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  kinetofem::return_freed_memory_to_the_system();  // as the program does (core/process_memory.hpp)
   const std::string case_path = argc > 1 ? argv[1] : "cases/lever_chain_manipulator/case.toml";
   std::vector<double> sizes;
-  for (int i = 2; i < argc; ++i) sizes.push_back(std::atof(argv[i]));
+  std::vector<std::string> overrides;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--set" && i + 1 < argc)
+      overrides.push_back(argv[++i]);
+    else
+      sizes.push_back(std::atof(argv[i]));
+  }
   if (sizes.empty()) sizes = {8.0, 5.0};
   std::printf("# manipulator cycle benchmark: %s\n", case_path.c_str());
+  for (const auto& o : overrides) std::printf("# --set %s\n", o.c_str());
   const double dgemm = dgemm_gflops(4000);
   std::printf("# BLAS kernel %s, DGEMM (4000 x 4000) %.1f GFLOP/s\n", blas_kernel().c_str(), dgemm);
   std::printf("%7s %-7s %9s %8s %8s %8s %9s %10s %9s %10s %8s %8s %6s\n", "h_mm", "link", "DoFs", "asm_s", "anal_s",
@@ -153,7 +165,7 @@ int main(int argc, char** argv) {
     const pid_t pid = fork();
     if (pid == 0) {
       try {
-        std::_Exit(run_one(case_path, size, dgemm));
+        std::_Exit(run_one(case_path, size, dgemm, overrides));
       } catch (const std::exception& e) {
         std::printf("%7.2f failed: %s\n", size, e.what());
         std::fflush(stdout);

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/meshes/lever.hpp"
@@ -150,6 +151,7 @@ void compare(const std::string& label, const fem::Mesh& mesh, const std::string&
 }  // namespace
 
 int main(int argc, char** argv) {
+  kinetofem::return_freed_memory_to_the_system();  // as the program does (core/process_memory.hpp)
   try {
     std::vector<double> sizes_mm;
     std::vector<long long> box_dofs;

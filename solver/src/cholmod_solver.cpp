@@ -242,6 +242,8 @@ void CholmodSolver::release_factor() {
                                          impl_->factor, &impl_->common);
   impl_->check("cholmod_l_change_factor");
   if (!ok) fail("CHOLMOD cholmod_l_change_factor (releasing the factor) failed (status {})", impl_->common.status);
+  require(impl_->factor->x == nullptr && impl_->factor->xtype == CHOLMOD_PATTERN,
+          "CHOLMOD kept the numeric values of a released factor");
 }
 
 bool CholmodSolver::has_numeric_factor() const {

@@ -13,7 +13,12 @@
 //     4. run_dynamics                  the motion with the real masses
 //     5. solve_static_pose             the pose study at rest (when asked)
 //     6. analyse_part_over_motion      per part: loads, one factorization,
-//                                      block solves, stress, envelopes
+//                                      block solves, stress, envelopes;
+//        ElasticAssembly::set_up_part  then (assembly asked) the part's
+//                                      interface and load-pattern solves on
+//                                      the same factor, which is freed unless
+//                                      the vibration needs it (the assembly's
+//                                      topology and checks come before step 6)
 //        assess_part_fatigue           per part (when asked): rainflow, Miner,
 //                                      life per node over the work cycle
 //     7. write_mechanism_histories     bodies, joints, drives, chains, points

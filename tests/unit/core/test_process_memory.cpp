@@ -1,0 +1,54 @@
+// return_freed_memory_to_the_system (core/process_memory.hpp): a freed large
+// block leaves the resident memory again after the allocator policy that
+// libsuperlu_dist leaves behind (M_MMAP_MAX 0, M_TRIM_THRESHOLD -1).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+#include "kinetofem/core/process_memory.hpp"
+
+namespace kinetofem {
+namespace {
+
+double resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) * 1024.0;  // kB
+  return -1.0;
+}
+
+// Resident memory given back by freeing a touched block of `bytes`.
+double returned_by_free(std::size_t bytes) {
+  auto block = std::make_unique<char[]>(bytes);
+  std::memset(block.get(), 1, bytes);
+  const double with = resident_bytes();
+  block.reset();
+  return with - resident_bytes();
+}
+
+TEST(ProcessMemory, AFreedLargeBlockLeavesTheResidentMemory) {
+#if defined(__SANITIZE_ADDRESS__) || !defined(__GLIBC__)
+  GTEST_SKIP() << "glibc's allocator only (a sanitizer brings its own)";
+#else
+  ASSERT_GT(resident_bytes(), 0.0) << "no /proc/self/status";
+  constexpr std::size_t kBlock = std::size_t(256) << 20;
+  // What libsuperlu_dist does when it is loaded: the block stays resident.
+  ASSERT_EQ(mallopt(M_MMAP_MAX, 0), 1);
+  ASSERT_EQ(mallopt(M_TRIM_THRESHOLD, -1), 1);
+  EXPECT_LT(returned_by_free(kBlock), 0.5 * double(kBlock));
+  ASSERT_TRUE(return_freed_memory_to_the_system());
+  // Reference: the block's own size; most of it (page rounding aside) goes back.
+  EXPECT_GT(returned_by_free(kBlock), 0.9 * double(kBlock));
+#endif
+}
+
+}  // namespace
+}  // namespace kinetofem
