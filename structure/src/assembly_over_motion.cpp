@@ -133,6 +133,7 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
                                         {"displacement_magnitude", magnitude},
                                         {"von_mises", field.von_mises_pa}});
       BodyEnvelope& e = envelopes[p];
+#pragma omp parallel for schedule(static)
       for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
         if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
         if (field.von_mises_pa(i) > e.max_vm(i)) e.max_vm(i) = field.von_mises_pa(i), e.step_vm(i, 0) = fem::Index(k);
@@ -193,15 +194,16 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
     }
   };
 
-  Stopwatch clock;
+  Progress progress(log, "  elastic assembly: output times", long(T));
   for (size_t first = 0; first < T; first += kPosesPerBlock) {
     const size_t count = std::min(kPosesPerBlock, T - first);
     const std::vector<mech::Frame> block(motion.begin() + long(first), motion.begin() + long(first + count));
     const std::vector<PoseSolution> poses = assembly.solve(block);
     if (first == 0) summary.indeterminacy = poses.front().indeterminacy;
     for (size_t f = 0; f < count; ++f) record(poses[f], first + f);
-    log.info("  elastic assembly: {}/{} output times done in {:.2f} s", first + count, T, clock.seconds());
+    progress.advance(long(first + count));
   }
+  progress.finish();
   const bool determinate = summary.indeterminacy.in_plane == 0;
   if (determinate && summary.worst_chain_mismatch > 1e-6)
     fail(

@@ -108,6 +108,7 @@ struct ElasticAssembly::Impl {
     bool superposed = false;
     bool set_up = false;  // set_up_part done
     Eigen::MatrixXd Zp, SG, Sp, GtZp;  // GtZp = G^T Z_p (6m x p)
+    Eigen::MatrixXd stress_block;      // add_fields' 6N x poses buffer, reused
     Eigen::Matrix<double, 6, Eigen::Dynamic> Rp;
   };
   struct JointData {
@@ -590,18 +591,20 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
   Stopwatch clock;
   const Eigen::Index count = Eigen::Index(poses.size());
   for (size_t p = 0; p < parts.size(); ++p) {
-    const PartData& part = *parts[p];
+    PartData& part = *parts[p];
     const fem::Mesh& mesh = part.supported.mesh;
     const fem::Index N = mesh.node_count();
     Eigen::MatrixXd lambda(part.ZG.cols(), count);
     for (Eigen::Index f = 0; f < count; ++f) lambda.col(f) = inputs[size_t(f)].lambda_body[p];
     Eigen::MatrixXd elastic = load_displacement[p];
     fem::blas_product(part.ZG, lambda, elastic, 1.0);
-    Eigen::MatrixXd stress;
+    // Kept between blocks: a fresh block of this size is mapped anew and
+    // costs more in page faults than the products.
+    Eigen::MatrixXd& stress = part.stress_block;
     if (options.recover_stress && part.superposed) {
-      stress.resize(part.SG.rows(), count);
-      fem::blas_product(part.SG, lambda, stress);
-      fem::blas_product(part.Sp, coefficients[p], stress, 1.0);
+      if (stress.rows() != part.SG.rows() || stress.cols() < count) stress.resize(part.SG.rows(), count);
+      fem::blas_product(part.SG, lambda, stress.leftCols(count));
+      fem::blas_product(part.Sp, coefficients[p], stress.leftCols(count), 1.0);
     }
     for (Eigen::Index f = 0; f < count; ++f) {
       const Eigen::Matrix3d R = rot_z(frames[size_t(f)].bodies[size_t(part.body_index)].q.z());
