@@ -519,51 +519,50 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
 
 // The part's factorization (given, or made here; made again if it was
 // freed), its interface columns G, Z_G = K_s^-1 G and flexibility G^T Z_G.
-void ElasticAssembly::Impl::solve_interface_columns(PartData& data) {
-  PartData* const part = &data;
-  fem::FeModel& fe = part->supported;
+void ElasticAssembly::Impl::solve_interface_columns(PartData& part) {
+  fem::FeModel& fe = part.supported;
   const fem::Index dofs = 3 * fe.mesh.node_count();
-  log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part->body, fe.mesh.node_count(),
-           part->interfaces.size());
-  if (part->given_analysis) {
-    part->analysis = part->given_analysis;
+  log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part.body, fe.mesh.node_count(),
+           part.interfaces.size());
+  if (part.given_analysis) {
+    part.analysis = part.given_analysis;
   } else {
-    part->own_analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
-    part->analysis = part->own_analysis.get();
+    part.own_analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
+    part.analysis = part.own_analysis.get();
   }
-  part->analysis->factorize();  // a no-op unless deferred or freed
-  const Eigen::Index m = Eigen::Index(part->interfaces.size());
+  part.analysis->factorize();  // a no-op unless deferred or freed
+  const Eigen::Index m = Eigen::Index(part.interfaces.size());
   if (options.coupling == BoreCoupling::RigidBore) {
     std::vector<RigidBoreInterface> bores;
-    for (const int g : part->interfaces) bores.push_back({interfaces[size_t(g)].face_set, interfaces[size_t(g)].reference});
+    for (const int g : part.interfaces) bores.push_back({interfaces[size_t(g)].face_set, interfaces[size_t(g)].reference});
     try {
-      part->rigid = std::make_unique<RigidBoreCondensation>(*part->analysis, fe.mesh, bores, log);
+      part.rigid = std::make_unique<RigidBoreCondensation>(*part.analysis, fe.mesh, bores, log);
     } catch (const Error& e) {
-      fail("{}: rigid-bore couplings: {}", part->label, e.what());
+      fail("{}: rigid-bore couplings: {}", part.label, e.what());
     }
-    part->G = part->rigid->loads();
-    part->ZG = part->rigid->load_displacement();
-    part->F = part->rigid->flexibility();
-    part->F = 0.5 * (part->F + part->F.transpose()).eval();
+    part.G = part.rigid->loads();
+    part.ZG = part.rigid->load_displacement();
+    part.F = part.rigid->flexibility();
+    part.F = 0.5 * (part.F + part.F.transpose()).eval();
     stats.part_dofs += long(dofs);
-    stats.interface_columns += long(part->rigid->statistics().setup_solves);
-    if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+    stats.interface_columns += long(part.rigid->statistics().setup_solves);
+    if (!part.given_analysis) stats.factorize_seconds += part.analysis->solver_statistics().factorize_seconds;
     return;
   }
-  part->G = Eigen::MatrixXd::Zero(dofs, 6 * m);
+  part.G = Eigen::MatrixXd::Zero(dofs, 6 * m);
   for (Eigen::Index l = 0; l < m; ++l) {
-    const Vector3d& X = interfaces[size_t(part->interfaces[size_t(l)])].reference;
+    const Vector3d& X = interfaces[size_t(part.interfaces[size_t(l)])].reference;
     for (int c = 0; c < 3; ++c) {
-      part->couplings[size_t(l)]->add(Vector3d::Unit(c), Vector3d::Zero(), X, part->G.col(6 * l + c));
-      part->couplings[size_t(l)]->add(Vector3d::Zero(), Vector3d::Unit(c), X, part->G.col(6 * l + 3 + c));
+      part.couplings[size_t(l)]->add(Vector3d::Unit(c), Vector3d::Zero(), X, part.G.col(6 * l + c));
+      part.couplings[size_t(l)]->add(Vector3d::Zero(), Vector3d::Unit(c), X, part.G.col(6 * l + 3 + c));
     }
   }
-  part->ZG = solve_columns(*part->analysis, part->G);
-  part->F = part->G.transpose() * part->ZG;
-  part->F = 0.5 * (part->F + part->F.transpose()).eval();
+  part.ZG = solve_columns(*part.analysis, part.G);
+  part.F = part.G.transpose() * part.ZG;
+  part.F = 0.5 * (part.F + part.F.transpose()).eval();
   stats.part_dofs += long(dofs);
   stats.interface_columns += long(6 * m);
-  if (!part->given_analysis) stats.factorize_seconds += part->analysis->solver_statistics().factorize_seconds;
+  if (!part.given_analysis) stats.factorize_seconds += part.analysis->solver_statistics().factorize_seconds;
 }
 
 // Per part: factorization, interface columns, Z_G, flexibility, the load
