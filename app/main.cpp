@@ -10,10 +10,14 @@
 #include "kinetofem/app/commands.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/process_memory.hpp"
+#include "kinetofem/core/termination_cleanup.hpp"
 #include "kinetofem/core/version.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 
 int main(int argc, char** argv) {
+  // Ctrl-C, SIGTERM or SIGHUP remove the registered temporary files and stop
+  // the registered child processes before the program dies of the signal.
+  kinetofem::core::install_termination_cleanup();
   // A file-size limit (a full disk, simulated or real) must end in a clear
   // error from the writer, not in a kill by SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
