@@ -3,6 +3,9 @@
 #include <array>
 #include <algorithm>
 #include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
 #include <fstream>
 #include <sstream>
 #include <cctype>
@@ -13,6 +16,7 @@
 #include "geometry_meshing.hpp"
 #include "gmsh_model.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
 
 namespace kinetofem::meshes {
@@ -27,29 +31,38 @@ void MeshOptions::validate() const {
 
 namespace {
 
-void apply_options(const MeshOptions& options) {
-  gmsh::option::setNumber("Mesh.MeshSizeMax", options.element_size_m);
-  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", options.elements_per_circle);
-  gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: robust and deterministic
-  gmsh::option::setNumber("Mesh.Optimize", options.optimize ? 1 : 0);
-  gmsh::option::setNumber("Mesh.OptimizeNetgen", 0);
-  // Gmsh raises the order inside generate(), after the hex subdivision and
-  // before the high-order optimizer (setOrder() would skip the optimizer).
-  gmsh::option::setNumber("Mesh.ElementOrder", options.order);
-  gmsh::option::setNumber("Mesh.RecombineAll", 0);
-  gmsh::option::setNumber("Mesh.Recombine3DAll", 0);
+// Every Gmsh option kinetofem sets for meshing, by name: set by
+// apply_options and written into the mesh cache key, so a change here is a
+// new key.
+std::vector<std::pair<std::string, double>> gmsh_mesh_options(const MeshOptions& options) {
   const bool hex = options.family == ElementFamily::Hexahedra;
-  gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", hex ? 2 : 0);
-  // 20-node serendipity hexahedra and 8-node quadrangles, not Lagrange 27/9.
-  gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
-  // Curved mid-nodes may tangle thin elements near bores. 1 = optimize only
-  // the elements whose Jacobian ratio is poor; 2 (elastic analogy first)
-  // gives the same valid lever meshes 7x slower (23.7 s vs 3.1 s at 5 mm).
-  // Not for the subdivided hexahedra: in Gmsh 4.8 the optimizer runs for
-  // minutes there and has left NaN coordinates.
-  gmsh::option::setNumber("Mesh.HighOrderOptimize", options.optimize && !hex ? 1 : 0);
-  gmsh::option::setNumber("General.NumThreads", 1);
+  return {
+      {"Mesh.MeshSizeMax", options.element_size_m},
+      {"Mesh.MeshSizeMin", 0.0},
+      {"Mesh.MeshSizeFromCurvature", double(options.elements_per_circle)},
+      {"Mesh.Algorithm3D", 1},  // Delaunay: robust and deterministic
+      {"Mesh.Optimize", options.optimize ? 1 : 0},
+      {"Mesh.OptimizeNetgen", 0},
+      // Gmsh raises the order inside generate(), after the hex subdivision and
+      // before the high-order optimizer (setOrder() would skip the optimizer).
+      {"Mesh.ElementOrder", double(options.order)},
+      {"Mesh.RecombineAll", 0},
+      {"Mesh.Recombine3DAll", 0},
+      {"Mesh.SubdivisionAlgorithm", hex ? 2 : 0},
+      // 20-node serendipity hexahedra and 8-node quadrangles, not Lagrange 27/9.
+      {"Mesh.SecondOrderIncomplete", 1},
+      // Curved mid-nodes may tangle thin elements near bores. 1 = optimize only
+      // the elements whose Jacobian ratio is poor; 2 (elastic analogy first)
+      // gives the same valid lever meshes 7x slower (23.7 s vs 3.1 s at 5 mm).
+      // Not for the subdivided hexahedra: in Gmsh 4.8 the optimizer runs for
+      // minutes there and has left NaN coordinates.
+      {"Mesh.HighOrderOptimize", options.optimize && !hex ? 1 : 0},
+      {"General.NumThreads", 1},
+  };
+}
+
+void apply_options(const MeshOptions& options) {
+  for (const auto& [name, value] : gmsh_mesh_options(options)) gmsh::option::setNumber(name, value);
 }
 
 }  // namespace
@@ -72,19 +85,26 @@ std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 14695981039346
   return hash;
 }
 
-std::string cache_key(const std::filesystem::path& file, const MeshOptions& options,
-                      const detail::GeometryJob& job) {
+// nullopt when the inputs cannot all be known (a trusted .geo that names a
+// file it reads by an expression): such a file is not cached.
+std::optional<std::string> cache_key(const std::filesystem::path& file, const MeshOptions& options,
+                                     const detail::GeometryJob& job) {
   const GeometryParameters& parameters = job.parameters;
+  const auto inputs = geometry_inputs_key(file);
+  if (!inputs) return std::nullopt;
   std::ifstream in(file, std::ios::binary);
   std::stringstream content;
   content << in.rdbuf();
-  // Everything that changes the mesh: the file's text, the parameters, the
-  // options, and the mesh format of this cache.
-  std::string key = "kinetofem-mesh-cache-v1\n" + content.str();
+  // Everything that changes the mesh: the file's text, every file it reads,
+  // the parameters, the options and every Gmsh option set for meshing, the
+  // Gmsh version, and the mesh format of this cache.
+  std::string key = "kinetofem-mesh-cache-v2\n" + content.str() + *inputs;
   for (const auto& [name, value] : parameters) key += fmt::format("\n{}={:.17g}", name, value);
   key += fmt::format("\nsize={:.17g} order={} family={} per_circle={} optimize={}",
                      options.element_size_m, options.order, int(options.family),
                      options.elements_per_circle, options.optimize);
+  for (const auto& [name, value] : gmsh_mesh_options(options)) key += fmt::format("\n{}={:.17g}", name, value);
+  key += fmt::format("\ngmsh {}", GMSH_API_VERSION);
   key += job.cache_key_extra;
   return fmt::format("{}_{:016x}", file.stem().string(), fnv1a(key));
 }
@@ -108,8 +128,9 @@ fem::Mesh detail::mesh_geometry_file(const std::filesystem::path& file, const Me
           "{}: the model unit {} m is not a positive length", file.string(), job.model_unit_m);
   if (options.cache_dir.empty() || !std::filesystem::is_regular_file(file))
     return mesh_geometry_uncached(file, options, job);
-  const std::filesystem::path cached =
-      options.cache_dir / (cache_key(file, options, job) + ".msh");
+  const auto key = cache_key(file, options, job);
+  if (!key) return mesh_geometry_uncached(file, options, job);
+  const std::filesystem::path cached = options.cache_dir / (*key + ".msh");
   std::error_code error;
   if (std::filesystem::is_regular_file(cached, error)) {
     try {

@@ -613,6 +613,37 @@ TEST(MeshPartFile, CacheKeysOnUnitAndSelections) {
   expect_bore_set(larger, "pivot", 0.120, 0.012, 0.036);
 }
 
+TEST(MeshPartFile, CacheKeysOnTheFilesAGeoReads) {
+  // A .geo that imports a STEP (the name_faces.geo pattern of
+  // cases/slider_crank_parts): the STEP changed, the mesh must change; both
+  // unchanged, the cached mesh is used.
+  TempDir dir;
+  write_link(dir / "link.step");
+  testing::write_text(dir / "part.geo", "SetFactory(\"OpenCASCADE\");\nGeometry.OCCTargetUnit = \"MM\";\n"
+                                        "v() = ShapeFromFile(\"link.step\");\n");
+  MeshOptions options = options_m();
+  options.cache_dir = dir / "cache";
+  auto entries = [&] {
+    return std::distance(std::filesystem::directory_iterator(options.cache_dir),
+                         std::filesystem::directory_iterator());
+  };
+  PartFileOptions mm;
+  mm.length_unit_m = 1e-3;
+  const auto first = mesh_part_file(dir / "part.geo", mm, options);
+  EXPECT_NEAR(mesh_volume(first) / (LinkMm{}.volume() * 1e-9), 1.0, volume_tolerance);
+  const auto again = mesh_part_file(dir / "part.geo", mm, options);
+  ASSERT_EQ(entries(), 1);
+  testing::expect_same_mesh(again, first, 0.0);
+
+  LinkMm longer;
+  longer.length = 150;
+  write_link(dir / "link.step", 1.0, longer);
+  const auto second = mesh_part_file(dir / "part.geo", mm, options);
+  EXPECT_EQ(entries(), 2);
+  EXPECT_NEAR(mesh_volume(second) / (longer.volume() * 1e-9), 1.0, volume_tolerance);
+  EXPECT_NEAR(second.nodes.col(0).maxCoeff(), 0.170, 1e-6);  // the far boss, r = 20 mm about x = 150 mm
+}
+
 // ---- OpenCASCADE's unit state between calls --------------------------------------
 
 TEST(MeshPartFile, GeoMergingAStepAfterAStepImportStillReadsMillimetres) {
