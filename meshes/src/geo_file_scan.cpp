@@ -100,6 +100,16 @@ bool used_as_variable(const std::vector<Token>& t, std::size_t k) {
          t[k + 2].text == "=";
 }
 
+// True when the token at k can start a statement (after ";", ")" of an
+// If, "}" or a keyword such as Else): "x = Save + 1" is no command.
+bool at_statement_start(const std::vector<Token>& t, std::size_t k) {
+  if (k == 0) return true;
+  const Token& previous = t[k - 1];
+  return previous.type == Token::Type::Name ||
+         (previous.type == Token::Type::Other &&
+          (previous.text == ";" || previous.text == ")" || previous.text == "}"));
+}
+
 // The literal at k when it is a plain string followed by `end`.
 std::optional<std::string> literal_before(const std::vector<Token>& t, std::size_t k,
                                           const char* end) {
@@ -242,6 +252,8 @@ std::vector<GeoCommand> geo_commands(std::string_view text) {
     if (t[k].type != Token::Type::Name) continue;
     if (k > 0 && is(k - 1, ".")) continue;  // an option's field: Mesh.Algorithm
     const std::string& name = t[k].text;
+    const bool expression = name == "ShapeFromFile" || name == "ListFromFile";
+    if (!expression && name != "Exit" && !at_statement_start(t, k)) continue;
     const int line = t[k].line;
     using Kind = GeoCommand::Kind;
     if (name == "Exit") {

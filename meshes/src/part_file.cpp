@@ -16,6 +16,7 @@
 #include "geometry_meshing.hpp"
 #include "gmsh_model.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
 
 namespace kinetofem::meshes {
@@ -381,6 +382,46 @@ std::string cache_key_extra(const PartFileOptions& part, double model_unit_m) {
   return key;
 }
 
+// A part is one body: its elements connected through shared nodes. Two
+// separate solids (a STEP holding a second body, a .geo's loose volume) would
+// give the dynamics the mass of both and leave one of them unsupported.
+void check_one_body(const std::string& context, const fem::Mesh& mesh) {
+  std::vector<fem::Index> parent(std::size_t(mesh.node_count()));
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = fem::Index(i);
+  auto root = [&](fem::Index i) {
+    while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
+    return i;
+  };
+  std::vector<char> used(parent.size(), 0);
+  for (const auto& block : mesh.blocks)
+    for (fem::Index e = 0; e < block.size(); ++e) {
+      const auto nodes = block.element(e);
+      used[std::size_t(nodes[0])] = 1;
+      for (const fem::Index n : nodes) {
+        used[std::size_t(n)] = 1;
+        parent[std::size_t(root(n))] = root(nodes[0]);
+      }
+    }
+  std::vector<std::array<double, 6>> boxes;  // per body, m
+  std::map<fem::Index, std::size_t> body_of_root;
+  for (std::size_t i = 0; i < parent.size(); ++i) {
+    if (!used[i]) continue;
+    const auto [it, added] = body_of_root.emplace(root(fem::Index(i)), boxes.size());
+    if (added) boxes.push_back({1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
+    auto& box = boxes[it->second];
+    for (int c = 0; c < 3; ++c) {
+      box[c] = std::min(box[c], mesh.nodes(fem::Index(i), c));
+      box[c + 3] = std::max(box[c + 3], mesh.nodes(fem::Index(i), c));
+    }
+  }
+  if (boxes.size() <= 1) return;
+  std::vector<std::string> listed;
+  for (std::size_t b = 0; b < boxes.size() && b < 3; ++b) listed.push_back(box_mm(boxes[b]));
+  fail("{}: the part is {} separate solids (not connected to each other; boxes in mm: {}{}); a part is one "
+       "body: keep one solid in the file, or join them (e.g. BooleanUnion/BooleanFragments in a .geo)",
+       context, boxes.size(), fmt::join(listed, ", "), boxes.size() > 3 ? ", ..." : "");
+}
+
 fem::Mesh mesh_msh_part(const std::filesystem::path& file, const PartFileOptions& part,
                         const MeshOptions& options, double unit_m) {
   const std::string context = file.string();
@@ -393,6 +434,7 @@ fem::Mesh mesh_msh_part(const std::filesystem::path& file, const PartFileOptions
   }
   if (unit_m != 1.0) mesh.nodes *= unit_m;
   mesh.validate();
+  check_one_body(context, mesh);
   return mesh;
 }
 
@@ -422,6 +464,17 @@ fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOption
           "{}: unknown part file type '{}' (expected one of {})", context, extension,
           fmt::join(accepted, ", "));
   check_selections(context, part.face_sets);
+  {
+    // Before Gmsh reads anything: Gmsh opens a .geo (and merges "<file>.opt"
+    // after a .msh it opens) as a script that can run programs.
+    GeoScanPolicy policy;
+    if (!part.case_folder.empty()) policy.read_roots.push_back(part.case_folder);
+    policy.trusted = part.trusted;
+    std::filesystem::path options_file = file;
+    options_file += ".opt";
+    if (extension == ".geo") scan_geo_file(file, policy);
+    else if (extension == ".msh" && std::filesystem::exists(options_file, error)) scan_geo_file(options_file, policy);
+  }
 
   const bool carries_unit = extension == ".step" || extension == ".stp" ||
                             extension == ".iges" || extension == ".igs";
@@ -459,7 +512,9 @@ fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOption
     add_face_selections(session, name, part.face_sets, model_unit_m);
   };
   job.cache_key_extra = cache_key_extra(part, model_unit_m);
-  return detail::mesh_geometry_file(file, mesh, job);
+  fem::Mesh meshed = detail::mesh_geometry_file(file, mesh, job);
+  check_one_body(context, meshed);
+  return meshed;
 }
 
 }  // namespace kinetofem::meshes

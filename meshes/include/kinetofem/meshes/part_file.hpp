@@ -33,13 +33,15 @@
 // file is opened once more in Gmsh to find its surfaces in the boxes.
 //
 // Mesh cache (MeshOptions::cache_dir): for geometry files the key covers the
-// file's text, the options, the length unit and every selection (name and
-// box). .msh files are not cached.
+// file's text, every file a .geo reads (geo_file_scan.hpp), the options, the
+// length unit and every selection (name and box). .msh files are not cached.
 //
 // Errors (kinetofem::Error, one line naming the file, and the selection for
 // a selection): a missing file; an unknown extension (the accepted ones are
 // listed); a missing, non-positive or (STEP/IGES) disagreeing length unit;
-// Gmsh failing to read or mesh the file; no volumes or no volume elements; a
+// a .geo command that reaches outside geometry (PartFileOptions::trusted);
+// Gmsh failing to read or mesh the file; a mesh of several separate solids
+// (a part is one body: its elements connected through shared nodes); no volumes or no volume elements; a
 // selection with an empty name, a name given twice or equal to a physical
 // group the file already has ("body" for STEP/IGES/BREP), a box whose corners
 // are not finite or with min > max, a box that holds no surface (the message
@@ -72,6 +74,14 @@ struct PartFileOptions {
   // given too, checked against it.
   std::optional<double> length_unit_m;
   std::vector<FaceSelection> face_sets;  // extra named face sets by bounding box
+  // What a .geo part file (and a "<file>.opt" Gmsh would merge) may do
+  // besides geometry, checked before Gmsh reads it (geo_file_scan.hpp): read
+  // files inside case_folder or its own folder only, by plain names, and no
+  // program runs, exits or file writes, unless trusted (the person running
+  // kinetofem trusts the file: --trust-part-files). Empty case_folder: its
+  // own folder only.
+  std::filesystem::path case_folder;
+  bool trusted = false;
 };
 
 // The mesh of the part in `file`, in metres, in the file's frame, with the
