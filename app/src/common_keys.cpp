@@ -92,6 +92,13 @@ std::vector<KeySpec> sweep_keys() {
   };
 }
 
+KeySpec mesh_time_limit_key() {
+  const meshes::MeshOptions defaults;
+  return {.path = "mesh.time_limit_s", .type = KeySpec::Type::Number, .unit = "s", .default_number = defaults.time_limit_s,
+          .min = 0, .max = 1e6, .min_exclusive = true,
+          .doc = "wall-clock limit for reading and meshing one geometry file (Gmsh runs in a child process, stopped there)"};
+}
+
 std::vector<KeySpec> part_mesh_keys() {
   using Type = KeySpec::Type;
   const meshes::MeshOptions defaults;
@@ -102,6 +109,7 @@ std::vector<KeySpec> part_mesh_keys() {
        .doc = "element order: 1 (TET4) or 2 (TET10)"},
       {.path = "mesh.cache", .type = Type::Boolean, .default_number = 1,
        .doc = "keep meshes in <output dir>/mesh_cache, keyed by a hash of the geometry, dimensions and mesh options, and reuse them"},
+      mesh_time_limit_key(),
   };
 }
 
@@ -110,6 +118,7 @@ meshes::MeshOptions read_part_mesh_options(const CaseFile& c, const std::filesys
   options.element_size_m = c.number("mesh.element_size_mm");
   options.order = int(c.integer("mesh.order"));
   if (c.boolean("mesh.cache")) options.cache_dir = output_dir / "mesh_cache";
+  options.time_limit_s = c.number("mesh.time_limit_s");
   return options;
 }
 

@@ -51,6 +51,7 @@ const std::vector<KeySpec>& fe_static_schema() {
       {.path = "mesh.family", .type = Type::String, .default_text = "tet", .allowed = {"tet", "hex"},
        .doc = "'tet': tetrahedra; 'hex': all-hexahedral by splitting tetrahedra"},
       {.path = "mesh.optimize", .type = Type::Boolean, .default_number = 1, .doc = "optimize element shapes after meshing"},
+      mesh_time_limit_key(),
       {.path = "support", .type = Type::TableArray, .doc = "displacement supports"},
       {.path = "support[].set", .type = Type::String, .doc = "node set (physical group) of the mesh", .required = true},
       {.path = "support[].fixed", .type = Type::StringList, .default_text = "x,y,z", .allowed = {"x", "y", "z"},
@@ -80,6 +81,7 @@ fem::Mesh build_mesh(const CaseFile& c, const Log& log) {
   options.family = c.text_value("mesh.family") == "hex" ? meshes::ElementFamily::Hexahedra
                                                         : meshes::ElementFamily::Tetrahedra;
   options.optimize = c.boolean("mesh.optimize");
+  options.time_limit_s = c.number("mesh.time_limit_s");
   Stopwatch clock;
   fem::Mesh mesh;
   if (c.text_value("geometry.kind") == "lever") {

@@ -18,6 +18,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
+#include "meshing_process.hpp"
 
 namespace kinetofem::meshes {
 
@@ -27,6 +28,8 @@ void MeshOptions::validate() const {
   require(order == 1 || order == 2, "mesh option order = {} must be 1 or 2", order);
   require(elements_per_circle >= 0 && elements_per_circle <= 360,
           "mesh option elements_per_circle = {} must be in 0..360", elements_per_circle);
+  require(std::isfinite(time_limit_s) && time_limit_s > 0,
+          "mesh option time_limit_s = {} must be a positive time in s", time_limit_s);
 }
 
 namespace {
@@ -157,8 +160,9 @@ fem::Mesh detail::mesh_geometry_file(const std::filesystem::path& file, const Me
 
 namespace {
 
-fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
-                                 const detail::GeometryJob& job) {
+// In this process: mesh_geometry_uncached runs it in a child process.
+fem::Mesh mesh_geometry_in_this_process(const std::filesystem::path& file, const MeshOptions& options,
+                                        const detail::GeometryJob& job) {
   const GeometryParameters& parameters = job.parameters;
   const std::string context = file.string();
   std::error_code error;
@@ -242,6 +246,14 @@ fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOp
   if (job.model_unit_m != 1.0) mesh.nodes *= job.model_unit_m;
   mesh.validate();
   return mesh;
+}
+
+// Gmsh reads and meshes the file in a child process: a crash, an exit or a
+// hang inside Gmsh becomes an Error naming the file (meshing_process.hpp).
+fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
+                                 const detail::GeometryJob& job) {
+  return detail::mesh_in_child_process(file.string(), detail::lower_extension(file), options,
+                                       [&] { return mesh_geometry_in_this_process(file, options, job); });
 }
 
 }  // namespace

@@ -26,7 +26,10 @@ fem::StaticSolverOptions read_solver_options(const CaseFile& case_file);
 // [sweep]: parameters, values, linspace (kinetofem run ignores them).
 std::vector<KeySpec> sweep_keys();
 
-// [mesh] of the parts of a motion case: element_size_mm, order, cache.
+// mesh.time_limit_s: the time limit of reading and meshing one geometry
+// file (MeshOptions::time_limit_s), for every case type that meshes.
+KeySpec mesh_time_limit_key();
+// [mesh] of the parts of a motion case: element_size_mm, order, cache, time_limit_s.
 std::vector<KeySpec> part_mesh_keys();
 // Mesh options of the parts; the cache in <output_dir>/mesh_cache.
 meshes::MeshOptions read_part_mesh_options(const CaseFile& case_file, const std::filesystem::path& output_dir);

@@ -20,7 +20,8 @@ std::string_view arm_geometry_text();
 // written to `file_name` in a fresh directory under
 // std::filesystem::temp_directory_path() (unique per call, so concurrent
 // calls and processes do not meet), meshed, and the directory removed again,
-// also when meshing throws. The mesh cache key (MeshOptions::cache_dir) is
+// also when meshing throws and when the program is ended by SIGINT, SIGTERM
+// or SIGHUP (core/termination_cleanup.hpp). The mesh cache key (MeshOptions::cache_dir) is
 // the file name's stem and a hash of the text, so it is that of the file
 // itself; messages name the temporary path.
 fem::Mesh mesh_geometry_text(std::string_view file_name, std::string_view text,

@@ -47,6 +47,11 @@ struct MeshOptions {
   // the high-order optimizer that untangles curved elements). Costs time.
   bool optimize = true;
   bool verbose = false;  // let Gmsh print its progress
+  // Wall-clock limit for reading and meshing one geometry file, s; > 0. Gmsh
+  // runs in a child process that is stopped there, an error naming the file
+  // (meshing_process.hpp; the case key mesh.time_limit_s). Not part of the
+  // mesh cache key: it does not change the mesh.
+  double time_limit_s = 600.0;
   // Mesh cache: when set, a mesh is stored there as .msh (binary) under a
   // content hash of the geometry file's text, the parameters and these
   // options, and read back instead of meshing again. Empty: no cache.
@@ -62,6 +67,8 @@ using GeometryParameters = std::map<std::string, double>;
 
 // Meshes the geometry in `file`; throws Error naming the file if it is
 // missing, cannot be read or meshed, or the mesh has no volume elements.
+// Gmsh reads and meshes the file in a child process (a crash, an exit from
+// inside Gmsh, or options.time_limit_s passing is an Error naming the file).
 fem::Mesh mesh_geometry(const std::filesystem::path& file, const MeshOptions& options,
                         const GeometryParameters& parameters = {});
 
