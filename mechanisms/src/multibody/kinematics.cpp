@@ -1,7 +1,9 @@
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <Eigen/Dense>
 
@@ -30,7 +32,98 @@ std::string body_poses(const MultibodySystem& system, const VectorXd& q) {
   return out;
 }
 
+// Largest change of any coordinate between q_from and q_to: angles in rad,
+// positions as a fraction of the characteristic length.
+double scaled_change(const MultibodySystem& system, const VectorXd& q_from, const VectorXd& q_to) {
+  double change = 0.0;
+  const double length = system.characteristic_length();
+  for (Eigen::Index i = 0; i < q_from.size(); ++i) {
+    const double d = std::abs(q_to(i) - q_from(i));
+    change = std::max(change, i % 3 == 2 ? d : d / length);
+  }
+  return change;
+}
+
+// Why [M Phi_q^T; Phi_q 0] is singular: redundant constraints or a singular
+// position (Phi_q loses rank), else bodies without mass or inertia that the
+// constraints do not hold.
+std::string singular_acceleration_cause(const MultibodySystem& system, const MatrixXd& jac, const VectorXd& mass,
+                                        double t) {
+  const std::string head =
+      fmt::format("mechanism '{}': the acceleration system is singular at t = {} s", system.model().name, t);
+  Eigen::FullPivLU<MatrixXd> lu_jac(jac);
+  lu_jac.setThreshold(1e-10);
+  if (lu_jac.rank() < jac.rows())
+    return fmt::format("{}: the constraint Jacobian has rank {} of {} rows (redundant constraints or a singular "
+                       "position)",
+                       head, lu_jac.rank(), jac.rows());
+  std::string unheld;
+  for (int b = 0; b < system.n_bodies(); ++b) {
+    const int o = system.offset(b);
+    if (o < 0 || (mass(o) > 0.0 && mass(o + 2) > 0.0)) continue;
+    unheld += fmt::format("{}'{}' ({:g} kg, {:g} kg*m^2)", unheld.empty() ? "" : ", ", system.model().bodies[b].name,
+                          mass(o), mass(o + 2));
+  }
+  if (!unheld.empty())
+    return fmt::format("{}: bodies with no mass or no inertia that the constraints do not hold: {}", head, unheld);
+  return fmt::format("{} (the constraint Jacobian has full rank and every body has mass and inertia)", head);
+}
+
 }  // namespace
+
+void follow_assembly(const MultibodySystem& system, VectorXd& q, VectorXd& qd, double t_from, double t_to,
+                     const KinematicOptions& options, long& substeps) {
+  // Continuation in time: a pose is only accepted when it lies within
+  // max_substep of the previous one, so that Newton cannot land on another
+  // assembly branch (the mirror image of a slider-crank or four-bar) however far
+  // apart the output times are. The next step starts from the rate of the last
+  // one; a rejected step is halved.
+  const double span = t_to - t_from;
+  const double min_step = std::max(1e-9 * span, 64.0 * std::numeric_limits<double>::epsilon() *
+                                                    std::max(std::abs(t_from), std::abs(t_to)));
+  double t = t_from;
+  double rate = scaled_change(system, VectorXd::Zero(q.size()), qd);  // per second
+  double h = rate > 0.0 ? std::min(span, options.max_substep / rate) : span;
+  while (t < t_to) {
+    if (++substeps > options.max_substeps)
+      fail("mechanism '{}': the motion is too large to follow: more than {} substeps (each moving the linkage by at "
+           "most {} rad, or {} of the characteristic length {:.6g} m) by t = {} s; check the motion law's speed and "
+           "stroke",
+           system.model().name, options.max_substeps, options.max_substep, options.max_substep,
+           system.characteristic_length(), t);
+    h = std::max(h, min_step);
+    const bool last = h >= t_to - t;
+    const double t_next = last ? t_to : t + h;
+    const double step = t_next - t;
+    std::string reason;
+    VectorXd q_next;
+    try {
+      q_next = assemble(system, q + qd * step, t_next, options);
+      const double change = scaled_change(system, q, q_next);
+      if (change > options.max_substep)
+        reason = fmt::format("the pose moves by {:.3g} (rad, or times the characteristic length {:.6g} m) in {:.3e} s",
+                             change, system.characteristic_length(), step);
+    } catch (const Error& e) {
+      reason = e.what();
+    }
+    if (reason.empty()) {
+      check_regular(system, q_next, t_next, options.singular_tolerance);
+      const VectorXd qd_next = solve_velocities(system, q_next, t_next, qd);
+      q = q_next;
+      qd = qd_next;
+      t = t_next;
+      rate = scaled_change(system, VectorXd::Zero(q.size()), qd);
+      h = 2.0 * step;
+      if (rate > 0.0) h = std::min(h, options.max_substep / rate);
+      continue;
+    }
+    if (step <= min_step)
+      fail("mechanism '{}': the assembly cannot be followed from t = {} s to t = {} s ({}; last assembled at t = {} s "
+           "with constraint Jacobian condition {:.3e}: a limit of assembly, dead centre or branch point lies in between)",
+           system.model().name, t_from, t_to, reason, t, jacobian_condition(system, q, t));
+    h = 0.5 * step;
+  }
+}
 
 VectorXd assemble(const MultibodySystem& system, VectorXd q, double t, const KinematicOptions& options) {
   const double tol = options.tolerance * system.characteristic_length();
@@ -59,21 +152,31 @@ VectorXd solve_velocities(const MultibodySystem& system, const VectorXd& q, doub
 
 Accelerations solve_accelerations(const MultibodySystem& system, const VectorXd& q, const VectorXd& qd, double t) {
   const int n = system.n_coordinates(), m = system.n_constraints();
-  MatrixXd a = MatrixXd::Zero(n + m, n + m);
-  a.topLeftCorner(n, n) = system.mass_diagonal().asDiagonal();
+  // Solved scaled: a = D x, lambda = S mu with D = M^(-1/2) (1 where a
+  // coordinate has no mass) and S making each row of Phi_q D of unit size, so
+  // that the mass block is the identity. Unscaled, a body of 1e300 kg next to
+  // one of 1 kg makes every constraint row look like round-off, and the system
+  // singular.
+  const VectorXd mass = system.mass_diagonal();
+  const VectorXd d = mass.unaryExpr([](double mi) { return mi > 0.0 ? 1.0 / std::sqrt(mi) : 1.0; });
   const MatrixXd jac = system.jacobian(q, t);
-  a.topRightCorner(n, m) = jac.transpose();
-  a.bottomLeftCorner(m, n) = jac;
+  const MatrixXd jac_d = jac * d.asDiagonal();
+  VectorXd s = VectorXd::Ones(m);
+  for (int r = 0; r < m; ++r) {
+    const double row = jac_d.row(r).cwiseAbs().maxCoeff();
+    if (row > 0.0) s(r) = 1.0 / row;
+  }
+  MatrixXd a = MatrixXd::Zero(n + m, n + m);
+  a.topLeftCorner(n, n) = mass.cwiseProduct(d).cwiseProduct(d).asDiagonal();
+  a.bottomLeftCorner(m, n) = s.asDiagonal() * jac_d;
+  a.topRightCorner(n, m) = a.bottomLeftCorner(m, n).transpose();
   VectorXd rhs(n + m);
-  rhs.head(n) = system.applied_forces(q, qd, t);
-  rhs.tail(m) = system.gamma(q, qd, t);
+  rhs.head(n) = d.cwiseProduct(system.applied_forces(q, qd, t));
+  rhs.tail(m) = s.cwiseProduct(system.gamma(q, qd, t));
   const Eigen::FullPivLU<MatrixXd> lu(a);
-  require(lu.isInvertible(),
-          "mechanism '{}': the acceleration system is singular at t = {} s (a massless body that is not fully "
-          "constrained, redundant constraints or a singular position)",
-          system.model().name, t);
+  if (!lu.isInvertible()) fail("{}", singular_acceleration_cause(system, jac, mass, t));
   const VectorXd x = lu.solve(rhs);
-  return {x.head(n), x.tail(m)};
+  return {d.cwiseProduct(x.head(n)), s.cwiseProduct(x.tail(m))};
 }
 
 double jacobian_condition(const MultibodySystem& system, const VectorXd& q, double t) {
@@ -112,21 +215,17 @@ Results run_kinematics(const MultibodySystem& system, const std::vector<double>&
           system.model().name, dof);
   const FrameOptions frame_options{options.singular_tolerance, options.slack_is_error};
   double t_prev = times.front(), work = 0.0, power_prev = 0.0;
+  long substeps = 0;
   for (std::size_t k = 0; k < times.size(); ++k) {
     const double t = times[k];
-    if (k > 0) q += qd * (t - t_prev);  // predictor
-    try {
+    if (k == 0) {
       q = assemble(system, q, t, options);
-    } catch (const Error& e) {
-      if (k == 0) throw;
-      // Name the bracket: the limit of assembly or dead centre lies between the
-      // last assembled time and this one.
-      fail("{} (last assembled at t = {} s with constraint Jacobian condition {:.3e}: a limit of assembly or dead "
-           "centre lies in between)",
-           e.what(), t_prev, results.frames.back().jacobian_condition);
+      check_regular(system, q, t, options.singular_tolerance);
+      qd = solve_velocities(system, q, t, qd);
+    } else {
+      require(t > t_prev, "run_kinematics: output times must increase, t = {} s after {} s", t, t_prev);
+      follow_assembly(system, q, qd, t_prev, t, options, substeps);
     }
-    check_regular(system, q, t, options.singular_tolerance);
-    qd = solve_velocities(system, q, t, qd);
     Frame frame = make_frame(system, t, q, qd, frame_options, &results.summary);
     double power = 0.0;
     for (const DriveFrame& d : frame.drives) power += d.power_W;

@@ -152,5 +152,79 @@ TEST(DynamicsFourBar, FreeMotionIdasAndCvodesAgree) {
   EXPECT_LT(minimal.summary.energy_balance_error, 1e-8);
 }
 
+TEST(DynamicsFourBar, CrankRockerKeepsItsBranchWithFewOutputTimes) {
+  // A Grashof crank-rocker (ground d = 0.4, crank r = 0.1, coupler c = 0.35,
+  // rocker b = 0.3 m; r + d < c + b) whose crank turns once in 1 s, from rest
+  // by a 3-4-5 law and at constant speed, with 3, 5, 11 and 21 output times. Reference: B on the circles |B - A| = c and |B - O4| = b on the
+  // open branch (left of A -> O4) the run starts on; the crossed branch is the
+  // mirror image of B in the line A O4.
+  const double d = 0.4, r = 0.1, c = 0.35, b = 0.3, phi0 = 30.0 * kDeg;
+  const Eigen::Vector2d o4(d, 0.0);
+  const auto point_b_open = [&](double phi) {
+    const Eigen::Vector2d a(r * std::cos(phi), r * std::sin(phi));
+    const Eigen::Vector2d u = (o4 - a).normalized();
+    const double dist = (o4 - a).norm(), along = (c * c - b * b + dist * dist) / (2.0 * dist);
+    return Eigen::Vector2d(a + along * u + std::sqrt(c * c - along * along) * Eigen::Vector2d(-u.y(), u.x()));
+  };
+  MultibodyModel m;
+  m.name = "crank-rocker";
+  m.characteristic_length_m = d;
+  m.gravity = {0.0, -9.81};
+  Body ground;
+  ground.name = "ground";
+  ground.fixed = true;
+  ground.points["O4"] = o4;
+  Body crank;
+  crank.name = "crank";
+  crank.mass_kg = 1.0;
+  crank.inertia_kgm2 = 1e-3;
+  crank.com_body = {0.5 * r, 0.0};
+  crank.points["A"] = {r, 0.0};
+  crank.pose = {0.0, 0.0, phi0};
+  const Eigen::Vector2d a0(r * std::cos(phi0), r * std::sin(phi0)), b0 = point_b_open(phi0);
+  Body coupler;  // origin at A, x along A -> B
+  coupler.name = "coupler";
+  coupler.mass_kg = 2.0;
+  coupler.inertia_kgm2 = 2e-2;
+  coupler.com_body = {0.5 * c, 0.0};
+  coupler.points["B"] = {c, 0.0};
+  coupler.pose = {a0.x(), a0.y(), std::atan2(b0.y() - a0.y(), b0.x() - a0.x())};
+  Body rocker;  // origin at O4, x along O4 -> B
+  rocker.name = "rocker";
+  rocker.mass_kg = 1.5;
+  rocker.inertia_kgm2 = 1e-2;
+  rocker.com_body = {0.5 * b, 0.0};
+  rocker.points["B"] = {b, 0.0};
+  rocker.pose = {d, 0.0, std::atan2(b0.y(), b0.x() - d)};
+  m.bodies = {ground, crank, coupler, rocker};
+  m.joints.push_back(make_revolute("O2", "ground", "origin", "crank", "origin"));
+  m.joints.push_back(make_revolute("A", "crank", "A", "coupler", "origin"));
+  m.joints.push_back(make_revolute("B", "coupler", "B", "rocker", "B"));
+  m.joints.push_back(make_revolute("O4", "ground", "O4", "rocker", "origin"));
+  MotionDrive drive;
+  drive.name = "crank drive";
+  drive.coordinate = {CoordinateType::Angle, "ground", "origin", "crank", "origin", {1, 0}};
+  m.motion_drives.push_back(drive);
+  const double turn = 2.0 * std::numbers::pi;
+  for (const std::shared_ptr<const MotionLaw>& law :
+       {std::shared_ptr<const MotionLaw>(std::make_shared<Polynomial345Law>(turn, 1.0)),
+        std::shared_ptr<const MotionLaw>(std::make_shared<ConstantVelocityLaw>(turn))}) {
+    m.motion_drives.front().law = law;
+    const MultibodySystem sys(m);
+    for (int n : {3, 5, 11, 21}) {
+      const Results res = run_kinematics(sys, sample_times(1.0, n - 1));
+      double worst = 0.0;
+      for (const Frame& f : res.frames) {
+        const Eigen::Vector3d rocker_pose = f.bodies[3].q;
+        const Eigen::Vector2d bp = o4 + b * Eigen::Vector2d(std::cos(rocker_pose.z()), std::sin(rocker_pose.z()));
+        worst = std::max(worst, (bp - point_b_open(f.bodies[1].q.z())).norm());
+      }
+      std::printf("crank-rocker, %s, %d output times: B vs open-branch closed form %.2e m\n",
+                  law->describe().c_str(), n, worst);
+      EXPECT_LT(worst, 1e-9) << law->describe() << ", " << n << " output times";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace kinetofem::mech

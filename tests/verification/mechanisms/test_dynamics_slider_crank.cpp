@@ -6,11 +6,13 @@
 //     M omega = sum_k ( m_k v_k . a_k + J_k w_k alpha_k + m_k g v_k,y ).
 // Also: a DC-motor-driven run integrated by IDAS and by CVODES must agree, and a
 // slider driven through the dead centre must stop with an error naming the time.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -222,6 +224,46 @@ TEST(DynamicsSliderCrank, ReachingTheDeadCentreIsASingularPosition) {
     const std::string what = e.what();
     std::printf("dead centre reached: %s\n", what.c_str());
     EXPECT_NE(what.find("at t = 1 s"), std::string::npos) << what;
+  }
+}
+
+TEST(DynamicsSliderCrank, FewOutputTimesKeepTheAssemblyBranch) {
+  // The crank of cases/mechanisms/slider_crank (r = 100 mm, l = 300 mm, from 30 deg)
+  // driven through one turn in 1 s, from rest by a 3-4-5 law and at constant
+  // speed, with 3, 11 and 21 output times: up to 180 deg between two poses.
+  // Every pose must lie on the branch the run starts on,
+  // x = r cos(phi) + sqrt(l^2 - (r sin(phi))^2) (elementary slider-crank
+  // kinematics), never on the mirror branch x = r cos(phi) - sqrt(...).
+  SliderCrank sc;
+  sc.r = 0.1;
+  sc.l = 0.3;
+  const double phi0 = 30.0 * std::numbers::pi / 180.0, turn = 2.0 * std::numbers::pi;
+  const std::vector<std::shared_ptr<const MotionLaw>> laws = {std::make_shared<Polynomial345Law>(turn, 1.0),
+                                                              std::make_shared<ConstantVelocityLaw>(turn)};
+  for (const auto& law : laws) {
+    MultibodyModel m = sc.model(phi0, true);
+    m.motion_drives.front().law = law;
+    const MultibodySystem sys(m);
+    for (int n : {3, 11, 21}) {
+      std::vector<double> times;
+      for (int k = 0; k < n; ++k) times.push_back(1.0 * k / (n - 1));
+      const Results kin = run_kinematics(sys, times);
+      const Results ggl = simulate_ggl(sys, times);
+      ASSERT_EQ(kin.frames.size(), times.size());
+      double err_kin = 0.0, err_ggl = 0.0;
+      for (std::size_t k = 0; k < times.size(); ++k) {
+        const double phi = phi0 + law->at(times[k]).s;
+        const double x = sc.r * std::cos(phi) + std::sqrt(sc.l * sc.l - std::pow(sc.r * std::sin(phi), 2));
+        EXPECT_NEAR(kin.frames[k].bodies[3].q.x(), x, 1e-9)
+            << law->describe() << ", " << n << " output times, t = " << times[k] << " s";
+        err_kin = std::max(err_kin, std::abs(kin.frames[k].bodies[3].q.x() - x));
+        err_ggl = std::max(err_ggl, std::abs(ggl.frames[k].bodies[3].q.x() - x));
+      }
+      std::printf("slider-crank, %s, %d output times: slider x error kinematic %.2e m, IDAS %.2e m\n",
+                  law->describe().c_str(), n, err_kin, err_ggl);
+      // IDAS takes its own steps between output times: to its tolerance (1e-10 relative).
+      EXPECT_LT(err_ggl, 1e-6) << law->describe() << ", " << n << " output times";
+    }
   }
 }
 

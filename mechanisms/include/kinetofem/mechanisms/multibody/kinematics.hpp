@@ -27,6 +27,13 @@ struct KinematicOptions {
   int max_iterations = 50;
   double singular_tolerance = 1e-6;  // on sigma_min / sigma_max of Phi_q
   bool slack_is_error = true;
+  // Largest change of any coordinate from one assembled pose to the next while
+  // following the motion (rad for angles; for positions, a fraction of the
+  // characteristic length): keeps Newton on the assembly branch it started on.
+  double max_substep = 0.1;
+  // Most substeps of one run: a motion law far beyond any mechanism (1e12 deg/s)
+  // is an error, not an endless run.
+  long max_substeps = 1000000;
 };
 
 Eigen::VectorXd assemble(const MultibodySystem& system, Eigen::VectorXd q_guess, double t,
@@ -48,8 +55,20 @@ void check_regular(const MultibodySystem& system, const Eigen::VectorXd& q, doub
 // Number of degrees of freedom at q: n - rank(Phi_q).
 int degrees_of_freedom(const MultibodySystem& system, const Eigen::VectorXd& q, double t);
 
-// Kinematically determined run (DoF 0): at each time assemble (warm start),
-// solve velocities and accelerations, and the multipliers (drive efforts,
+// Follows the assembly (q, q') from t_from to t_to in substeps: each pose is
+// assembled from the previous one's linear prediction and accepted only when no
+// coordinate moved by more than options.max_substep (else the substep is
+// halved), and every substep's pose is checked regular. Thus the result is on
+// the branch the motion started on, however far apart t_from and t_to are.
+// Throws, naming the times, where the motion cannot be followed (a limit of
+// assembly, a dead centre or a branch point), a substep's pose is singular, or
+// `substeps` (counted across calls: the run's substeps so far) would pass
+// options.max_substeps.
+void follow_assembly(const MultibodySystem& system, Eigen::VectorXd& q, Eigen::VectorXd& qd, double t_from,
+                     double t_to, const KinematicOptions& options, long& substeps);
+
+// Kinematically determined run (DoF 0): follow the assembly from each output
+// time to the next (follow_assembly), solve velocities and accelerations, and the multipliers (drive efforts,
 // reactions) by kinetostatics. Drive work is integrated with the trapezoidal rule
 // over the output times (a coarse check, not used for verification).
 Results run_kinematics(const MultibodySystem& system, const std::vector<double>& times,
