@@ -11,6 +11,9 @@ namespace {
 
 using Type = KeySpec::Type;
 constexpr long kDefaultStrands = 1;  // a simplex chain
+// EA is a stiffness in N, not a force: a steel bar of 100 cm^2 has 2e9 N.
+constexpr double kMaxEaN = 1e12;
+constexpr const char* kEaNote = "a plausible axial stiffness EA";
 
 void add_common(std::vector<KeySpec>& s, bool enabled_by_default, const char* enabled_doc) {
   s.push_back({.path = "assembly.enabled", .type = Type::Boolean, .default_number = enabled_by_default ? 1.0 : 0.0,
@@ -39,8 +42,9 @@ void add_manipulator_assembly_keys(std::vector<KeySpec>& s) {
              "also solve the manipulator as one elastic structure held by its frame: total deformation, the gripper "
              "point H's deflection, its split and compliance");
   s.push_back({.path = "assembly.chain_ea_per_strand_n", .type = Type::Number, .unit = "N",
-               .default_number = kDefaultManipulatorChain.ea_per_strand_n, .min = 0, .min_exclusive = true,
-               .doc = "lever-chain: axial stiffness EA of one chain strand (default: ISO 606 08B-1, see the case README)"});
+               .default_number = kDefaultManipulatorChain.ea_per_strand_n, .min = 0, .max = kMaxEaN, .min_exclusive = true,
+               .doc = "lever-chain: axial stiffness EA of one chain strand (default: ISO 606 08B-1, see the case README)",
+               .range_note = kEaNote});
   s.push_back({.path = "assembly.chain_strands", .type = Type::Integer, .default_number = double(kDefaultStrands), .min = 1, .max = 3,
                .doc = "lever-chain: strands of the chain (simplex 1, duplex 2, triplex 3); EA = strands x per strand"});
   s.push_back({.path = "assembly.drive_stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
@@ -81,8 +85,10 @@ void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
   add_common(s, false,
              "also solve the linkage as one elastic structure held by the ground (needs [[part]]s; revolute, fixed "
              "and chain joints, angle drives)");
-  s.push_back({.path = "joint[].ea_per_strand_n", .type = Type::Number, .unit = "N", .min = 0, .min_exclusive = true,
-               .doc = "chain, elastic assembly: axial stiffness EA of one strand (required when the assembly is on)"});
+  s.push_back({.path = "joint[].ea_per_strand_n", .type = Type::Number, .unit = "N", .min = 0, .max = kMaxEaN,
+               .min_exclusive = true,
+               .doc = "chain, elastic assembly: axial stiffness EA of one strand (required when the assembly is on)",
+               .range_note = kEaNote});
   s.push_back({.path = "joint[].strands", .type = Type::Integer, .default_number = double(kDefaultStrands), .min = 1, .max = 3,
                .doc = "chain, elastic assembly: number of strands; EA = strands x per strand"});
   s.push_back({.path = "motion_drive[].stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,

@@ -1,5 +1,6 @@
 // The plan of a batch: case files and their sweeps expanded into named runs,
 // each with its overrides and content hash.
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
@@ -23,7 +24,7 @@ using Type = KeySpec::Type;
 // The keys the batch reads; every other key is left to `kinetofem run`.
 std::vector<KeySpec> plan_schema() {
   return {
-      {.path = "case.name", .type = Type::String},
+      case_name_key(),
       {.path = "case.type", .type = Type::String},
       {.path = "geometry.file", .type = Type::String},
       {.path = "sweep.parameters", .type = Type::StringList},
@@ -152,10 +153,6 @@ std::string file_safe(const std::string& text) {
   return out;
 }
 
-std::string default_name(const std::filesystem::path& case_path) {
-  return std::filesystem::absolute(case_path).parent_path().filename().string();
-}
-
 BatchRun make_run(const std::filesystem::path& case_path, const std::string& text, std::string name,
                   std::vector<std::string> overrides) {
   // Re-read with the run's overrides: they may change geometry.file.
@@ -170,18 +167,53 @@ BatchRun make_run(const std::filesystem::path& case_path, const std::string& tex
   return run;
 }
 
+// A batch larger than kMaxBatchRuns: refused as a whole, not one failed run.
+struct PlanTooLarge : Error {
+  using Error::Error;
+};
+
+// The runs of a sweep, from its counts before any is made; PlanTooLarge if
+// they and the `planned` runs before them exceed kMaxBatchRuns. The product is
+// compared by division, so that it cannot overflow.
+std::size_t sweep_size(const std::vector<SweepAxis>& axes, std::size_t planned, const CaseFile& c) {
+  const std::size_t room = kMaxBatchRuns - std::min(planned, kMaxBatchRuns);
+  std::size_t count = 1;
+  bool too_many = false;
+  std::string counts;
+  double product = 1.0;  // for the message only
+  for (const auto& axis : axes) {
+    const std::size_t n = axis.values.size();
+    too_many = too_many || (n > 0 && count > room / n);
+    if (!too_many) count *= n;
+    product *= double(n);
+    counts += (counts.empty() ? "" : " x ") + fmt::format("{}", n);
+  }
+  if (too_many || count > room)
+    throw PlanTooLarge(fmt::format(
+        "{}: [sweep] gives {} runs{}, more than the {} a batch may plan: sweep fewer values or split the batch",
+        c.where("sweep.parameters"), axes.size() > 1 ? fmt::format("{} = {:g}", counts, product) : counts,
+        planned > 0 ? fmt::format(" after the {} run(s) of the cases before it", planned) : std::string(),
+        kMaxBatchRuns));
+  return count;
+}
+
 void plan_case(const std::filesystem::path& case_path, const std::vector<std::string>& overrides,
                std::vector<BatchRun>& runs) {
-  std::error_code ec;
-  require(std::filesystem::is_regular_file(case_path, ec), "{}: case file does not exist", case_path.string());
+  const std::string problem = input_file_problem(case_path);
+  require(problem.empty(), "{}: {}", case_path.string(),
+          problem == "no such file" ? std::string("case file does not exist") : problem + ", expected a case file");
   const std::string text = read_bytes(case_path);
   const CaseFile c = CaseFile::parse(text, case_path, plan_schema(), /*allow_unknown=*/true, overrides);
-  const std::string base = c.has("case.name") ? c.text_value("case.name") : default_name(case_path);
+  const std::string base = case_name(c);
   const std::vector<SweepAxis> axes = sweep_axes(c);
   if (axes.empty()) {
+    if (runs.size() >= kMaxBatchRuns)
+      throw PlanTooLarge(fmt::format("{}: the batch would have more than the {} runs it may plan: split it",
+                                     case_path.string(), kMaxBatchRuns));
     runs.push_back(make_run(case_path, text, base, overrides));
     return;
   }
+  runs.reserve(runs.size() + sweep_size(axes, runs.size(), c));
   // Labels: the key's last part, unless two swept keys share it.
   std::vector<std::string> labels;
   for (const auto& axis : axes) labels.push_back(axis.key.substr(axis.key.rfind('.') + 1));
@@ -200,6 +232,7 @@ void plan_case(const std::filesystem::path& case_path, const std::vector<std::st
       point.push_back(axes[i].key + "=" + v.toml);
     }
     name = file_safe(name);
+    check_file_name(name, c.path().string() + ": the run name made of case.name and a [sweep] point");
     point.push_back("case.name=" + toml_string(name));
     runs.push_back(make_run(case_path, text, name, point));
     std::size_t k = axes.size();
@@ -241,9 +274,16 @@ std::vector<BatchRun> plan_batch(const std::vector<std::filesystem::path>& cases
   for (const auto& case_path : cases) {
     try {
       plan_case(case_path, overrides, runs);
+    } catch (const PlanTooLarge&) {
+      throw;
     } catch (const Error& e) {
       BatchRun run;
-      run.name = file_safe(default_name(case_path));
+      run.name = file_safe(default_case_name(case_path));
+      try {
+        check_file_name(run.name, case_path.string());
+      } catch (const Error&) {
+        run.name = "unnamed_case";  // its log still needs a file name
+      }
       run.case_path = case_path;
       run.overrides = overrides;
       run.plan_error = e.what();

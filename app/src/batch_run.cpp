@@ -20,6 +20,7 @@
 #include "kinetofem/app/batch.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/core/termination_cleanup.hpp"
 #include "kinetofem/core/units.hpp"
 
 extern char** environ;
@@ -153,14 +154,19 @@ void decode(const std::string& text, std::map<std::size_t, Outcome>& outcomes) {
 }  // namespace
 
 std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& comm) {
-  require(options.jobs >= 1, "--jobs {}: must be at least 1", options.jobs);
+  require(options.jobs >= 1, "--jobs {}: must be a whole number of runs at once, 1 or more", options.jobs);
+  const int hardware_threads = std::max(1, int(std::thread::hardware_concurrency()));
+  const int jobs = std::min(options.jobs, kJobsPerThread * hardware_threads);
+  if (jobs < options.jobs && !options.quiet && comm.rank() == 0)
+    std::printf("kinetofem batch: --jobs %d lowered to %d: at most %d runs at once per hardware thread (%d here)\n",
+                options.jobs, jobs, kJobsPerThread, hardware_threads);
   const std::vector<BatchRun> plan = plan_batch(options.cases, options.overrides);
   const fs::path& dir = options.output_dir;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) fail("{}: cannot create the output directory: {}", dir.string(), ec.message());
   const fs::path exe = options.executable.empty() ? self_executable() : options.executable;
-  const int threads = child_threads(options.jobs);
+  const int threads = child_threads(jobs);
 
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < plan.size(); ++i)
@@ -168,7 +174,7 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
   const std::string rank_tag = comm.size() > 1 ? fmt::format(" (rank {})", comm.rank()) : "";
   if (!options.quiet && comm.rank() == 0)
     std::printf("kinetofem batch: %zu runs from %zu case files, %d at once%s, results in %s\n", plan.size(),
-                options.cases.size(), options.jobs,
+                options.cases.size(), jobs,
                 comm.size() > 1 ? fmt::format(" on each of {} ranks", comm.size()).c_str() : "",
                 dir.string().c_str());
   std::fflush(stdout);
@@ -209,18 +215,23 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
   struct Running {
     std::size_t index;
     Stopwatch clock;
+    // SIGTERM, SIGINT or SIGHUP to the batch reach its runs (which then remove
+    // their temporaries) and are waited for: no run outlives the batch to hold
+    // the lock on a results file that a resumed batch writes again.
+    core::KillOnTermination stop_on_signal;
   };
   std::map<pid_t, Running> running;
   std::size_t next = 0;
   while (next < pending.size() || !running.empty()) {
-    while (next < pending.size() && int(running.size()) < options.jobs) {
+    while (next < pending.size() && int(running.size()) < jobs) {
       const std::size_t index = pending[next++];
       const BatchRun& run = plan[index];
       // A stale hash or summary must not make a failed rerun look done.
       fs::remove(hash_path(dir, run.name), ec);
       fs::remove(run_summary_path(dir, run.name), ec);
       try {
-        running.emplace(spawn_run(exe, run, dir, threads), Running{index, Stopwatch()});
+        const pid_t pid = spawn_run(exe, run, dir, threads);
+        running.emplace(pid, Running{index, Stopwatch(), core::KillOnTermination(pid)});
       } catch (const Error& e) {
         outcomes[index] = {RunStatus::Failed, 0.0, e.what()};
         report(index);

@@ -1,7 +1,12 @@
 #include "kinetofem/app/case_file.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <new>
+
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 
@@ -36,11 +41,15 @@ std::optional<double> numeric(const toml::node& node) {
   return std::nullopt;
 }
 
-std::string range_text(const KeySpec& s) {
-  std::string lo = s.min > -1e299 ? fmt::format("{}{:g}", s.min_exclusive ? ">" : ">=", s.min) : "";
-  std::string hi = s.max < 1e299 ? fmt::format("<={:g}", s.max) : "";
-  if (lo.empty() && hi.empty()) return "";
-  return lo + (lo.empty() || hi.empty() ? "" : " and ") + hi;
+// A name as written in a message: at most 40 bytes, a control character (NUL
+// included) escaped as TOML writes it, so that the message stays one line.
+std::string shown_name(const std::string& name) {
+  std::string out;
+  for (std::size_t k = 0; k < name.size() && k < 40; ++k) {
+    const auto ch = static_cast<unsigned char>(name[k]);
+    out += ch < 0x20 || ch == 0x7f ? fmt::format("\\u{:04X}", unsigned(ch)) : std::string(1, name[k]);
+  }
+  return name.size() > 40 ? out + "..." : out;
 }
 
 std::string trim(const std::string& text) {
@@ -63,6 +72,103 @@ std::pair<std::string, std::string> split_override(const std::string& text) {
   if (key.empty())
     fail("--set {}: expected KEY=VALUE (e.g. --set mesh.element_size_mm=20)", text);
   return {key, trim(text.substr(eq + 1))};
+}
+
+std::string range_text(const KeySpec& s, std::optional<double> value) {
+  const bool min_declared = s.min > -1e300, max_declared = s.max < 1e300;
+  const bool below = value && (s.min_exclusive ? !(*value > s.min) : !(*value >= s.min));
+  const bool above = value && *value > s.max;
+  const std::string lo =
+      min_declared || below ? fmt::format("{}{:g}", s.min_exclusive ? ">" : ">=", s.min) : std::string();
+  const std::string hi = max_declared || above ? fmt::format("<={:g}", s.max) : std::string();
+  if (lo.empty() && hi.empty()) return "";
+  std::string text = lo + (lo.empty() || hi.empty() ? "" : " and ") + hi;
+  if (s.zero_allowed) text = "0, or " + text;
+  if (!s.unit.empty()) text += " " + s.unit;
+  if (!s.range_note.empty()) text += " (" + s.range_note + ")";
+  return text;
+}
+
+KeySpec plausible_range(KeySpec s) {
+  struct Plausible {
+    const char* unit;
+    double max;  // largest magnitude, in that unit
+    const char* note;
+  };
+  // Beyond any machine this program models, and far from overflow in the
+  // products the solvers form (F / (E A), m a, k x, ...).
+  static constexpr Plausible kTable[] = {
+      {"kg", 1e6, "a plausible mass: up to 1000 t"},
+      {"kg*m^2", 1e6, "a plausible moment of inertia"},
+      {"N", 1e9, "a plausible force: up to 1 GN"},
+      {"N*m", 1e9, "a plausible torque: up to 1 GN*m"},
+      {"MPa", 1e7, "a plausible stress or modulus: up to 10 TPa, above diamond's Young's modulus"},
+      {"m/s^2", 1e4, "a plausible acceleration: up to 1000 g"},
+      {"s", 1e7, "a plausible time: up to about 4 months"},
+      {"h", 1e7, "a plausible time: up to about 1100 years"},
+      {"1/h", 1e9, "a plausible rate"},
+      {"mm", 1e6, "a plausible length: up to 1 km"},
+      {"mm/s", 1e7, "a plausible speed: up to 10 km/s"},
+      {"m/s", 1e4, "a plausible speed: up to 10 km/s"},
+      {"deg/s", 1e7, "a plausible angular speed"},
+      {"rpm", 1e6, "a plausible angular speed"},
+      {"N/m", 1e12, "a plausible stiffness"},
+      {"N*s/m", 1e12, "a plausible damping"},
+      {"N*m/rad", 1e12, "a plausible stiffness"},
+      {"N*m*s/rad", 1e12, "a plausible damping"},
+      {"Hz", 1e9, "a plausible frequency"},
+      {"GB", 1e6, "a plausible memory size"},
+  };
+  if (s.type != KeySpec::Type::Number && s.type != KeySpec::Type::Vector3 && s.type != KeySpec::Type::Array)
+    return s;
+  for (const Plausible& p : kTable) {
+    if (s.unit != p.unit) continue;
+    const bool changed = s.max >= 1e300 || s.min <= -1e300;
+    if (s.max >= 1e300) s.max = p.max;
+    if (s.min <= -1e300) s.min = -p.max;
+    if (changed && s.range_note.empty()) s.range_note = p.note;
+    break;
+  }
+  return s;
+}
+
+void check_file_name(const std::string& name, const std::string& at) {
+  const auto refuse = [&](const std::string& why) {
+    fail("{} = \"{}\" cannot be a file name in the output folder: {}", at, shown_name(name), why);
+  };
+  if (name.empty()) refuse("it is empty");
+  if (name == "." || name == "..") refuse("\".\" and \"..\" name folders");
+  for (std::size_t k = 0; k < name.size(); ++k) {
+    const auto ch = static_cast<unsigned char>(name[k]);
+    if (ch == '/' || ch == '\\')
+      refuse(fmt::format("it holds the path separator '{}' (byte {})", char(ch), k));
+    if (ch < 0x20 || ch == 0x7f)
+      refuse(fmt::format("it holds the control character U+{:04X} (byte {})", unsigned(ch), k));
+  }
+  if (name.size() > kMaxRunNameBytes)
+    refuse(fmt::format("it has {} bytes, more than {}", name.size(), kMaxRunNameBytes));
+}
+
+KeySpec case_name_key() {
+  return {.path = "case.name", .type = KeySpec::Type::String,
+          .doc = "name of the run; results/<name>.h5 (default: the case folder's name)", .file_name = true};
+}
+
+std::string default_case_name(const std::filesystem::path& case_path) {
+  // Normalised first: "../case.toml" is in the folder above, not in one named "..".
+  return std::filesystem::absolute(case_path).lexically_normal().parent_path().filename().string();
+}
+
+std::string case_name(const CaseFile& c) {
+  if (c.has("case.name")) {
+    const std::string name = c.text_value("case.name");
+    check_file_name(name, c.where("case.name"));
+    return name;
+  }
+  const std::string name = default_case_name(c.path());
+  check_file_name(name, fmt::format("{}: the case folder's name (the run's name when case.name is absent)",
+                                    c.path().string()));
+  return name;
 }
 
 namespace {
@@ -92,17 +198,41 @@ std::vector<KeySegment> key_segments(const std::string& key, const std::string& 
 
 }  // namespace
 
+std::string input_file_problem(const std::filesystem::path& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  if (ec == std::errc::too_many_symbolic_link_levels) return "is a symlink loop";
+  if (st.type() == fs::file_type::not_found) {
+    std::error_code link_ec;
+    return fs::is_symlink(fs::symlink_status(file, link_ec)) ? "no such file (a symlink to nothing)" : "no such file";
+  }
+  if (ec) return "cannot be read: " + ec.message();
+  if (fs::is_directory(st)) return "is a directory";
+  if (fs::is_fifo(st)) return "is not a regular file (a FIFO)";
+  if (fs::is_socket(st)) return "is not a regular file (a socket)";
+  if (fs::is_block_file(st) || fs::is_character_file(st)) return "is not a regular file (a device)";
+  if (!fs::is_regular_file(st)) return "is not a regular file";
+  if (::access(file.c_str(), R_OK) != 0) return fmt::format("cannot be read: {}", std::strerror(errno));
+  return "";
+}
+
 CaseFile CaseFile::load(const std::filesystem::path& path, std::vector<KeySpec> schema,
                         bool allow_unknown, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail("{}: case file does not exist", path.string());
-  if (std::filesystem::is_directory(path, ec))
-    fail("{}: is a directory, expected a case file (case.toml)", path.string());
+  const std::string problem = input_file_problem(path);
+  if (problem == "no such file") fail("{}: case file does not exist", path.string());
+  if (problem == "is a directory") fail("{}: is a directory, expected a case file (case.toml)", path.string());
+  if (!problem.empty()) fail("{}: {}, expected a case file (case.toml)", path.string(), problem);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("{}: cannot open case file", path.string());
   std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse(buffer.str(), path, std::move(schema), allow_unknown, overrides);
+  try {
+    buffer << in.rdbuf();
+    return parse(buffer.str(), path, std::move(schema), allow_unknown, overrides);
+  } catch (const std::bad_alloc&) {
+    std::error_code ec;
+    fail("{}: not enough memory to read the case file ({} bytes)", path.string(), std::filesystem::file_size(path, ec));
+  }
 }
 
 CaseFile CaseFile::parse(const std::string& text, const std::filesystem::path& path,
@@ -113,6 +243,7 @@ CaseFile CaseFile::parse(const std::string& text, const std::filesystem::path& p
   c.path_ = path;
   c.text_ = text;
   c.schema_ = std::move(schema);
+  for (auto& s : c.schema_) s = plausible_range(std::move(s));
   try {
     c.root_ = toml::parse(text, path.string());
   } catch (const toml::parse_error& e) {
@@ -244,9 +375,9 @@ void CaseFile::check_value(const KeySpec& s, const toml::node& node, const std::
   auto check_number = [&](double v) {
     if (!std::isfinite(v)) fail("{} = {} is not a finite number", at, v);
     const bool low = s.min_exclusive ? !(v > s.min) : !(v >= s.min);
-    if (low || v > s.max)
-      fail("{} = {:g}{} is out of range: must be {}{}", at, v, s.unit.empty() ? "" : " " + s.unit,
-           range_text(s), s.unit.empty() ? "" : " " + s.unit);
+    if ((low || v > s.max) && !(s.zero_allowed && v == 0.0))
+      fail("{} = {:g}{} is out of range: must be {}", at, v, s.unit.empty() ? "" : " " + s.unit,
+           range_text(s, v));
   };
   switch (s.type) {
     case KeySpec::Type::Number: {
@@ -268,6 +399,7 @@ void CaseFile::check_value(const KeySpec& s, const toml::node& node, const std::
       const std::string v = *node.value<std::string>();
       if (!s.allowed.empty() && std::find(s.allowed.begin(), s.allowed.end(), v) == s.allowed.end())
         fail("{} = \"{}\" is not allowed: use one of {}", at, v, join(s.allowed));
+      if (s.file_name) check_file_name(v, at);
       return;
     }
     case KeySpec::Type::Vector3: {
@@ -297,6 +429,13 @@ void CaseFile::check_value(const KeySpec& s, const toml::node& node, const std::
       if (!node.is_array()) fail("{} must be {}", at, type_name(s.type));
       return;
   }
+}
+
+void CaseFile::check_number(const std::string& path, std::size_t element, double value) const {
+  KeySpec s = spec(path);
+  s.type = KeySpec::Type::Number;
+  const toml::value<double> node(value);
+  check_value(s, node, where(path, element));
 }
 
 const KeySpec& CaseFile::spec(const std::string& path) const {
@@ -402,17 +541,19 @@ std::string schema_template(const std::vector<KeySpec>& schema, const std::strin
   for (const auto& s : schema)
     if (s.type != KeySpec::Type::TableArray && std::find(tables.begin(), tables.end(), table_of(s)) == tables.end())
       tables.push_back(table_of(s));
+  std::vector<KeySpec> plausible;
+  for (const auto& s : schema) plausible.push_back(plausible_range(s));
   for (const auto& table : tables) {
     const bool array = table.size() > 2 && table.substr(table.size() - 2) == "[]";
     out += array ? "\n[[" + table.substr(0, table.size() - 2) + "]]\n" : "\n[" + table + "]\n";
-    for (const auto& s : schema) {
+    for (const auto& s : plausible) {
       if (s.type == KeySpec::Type::TableArray || table_of(s) != table) continue;
       const auto dot = s.path.rfind('.');
       const std::string key = dot == std::string::npos ? s.path : s.path.substr(dot + 1);
       std::string info = s.doc;
       if (!s.unit.empty()) info += "; unit: " + s.unit;
       const std::string range = range_text(s);
-      if (!range.empty()) info += "; " + range;
+      if (!range.empty()) info += "; range: " + range;
       if (!s.allowed.empty()) info += "; one of " + join(s.allowed);
       if (s.required) info += "; required";
       out += "# " + info + "\n";

@@ -13,6 +13,7 @@
 #include <memory>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "kinetofem/app/batch.hpp"
 #include "kinetofem/app/commands.hpp"
@@ -79,9 +80,23 @@ void add_batch_command(CLI::App& app, CommandContext& context) {
       "batch", "Run many cases and sweeps, each in its own process; skip runs whose results are up to date");
   batch->add_option("cases", options->cases, "Case files (TOML); a case with [sweep] gives one run per point")
       ->required();
-  batch->add_option("-j,--jobs", options->jobs, "Runs at once (on each MPI rank)")
+  batch->add_option("-j,--jobs", options->jobs,
+                    fmt::format("Runs at once (on each MPI rank); at most {} per hardware thread", kJobsPerThread))
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            // CLI11's own range check would print the limit of a double (309 digits).
+            std::size_t end = 0;
+            long n = 0;
+            try {
+              n = std::stol(text, &end);
+            } catch (const std::exception&) {
+              end = 0;
+            }
+            if (end == text.size() && n >= 1) return std::string();
+            return fmt::format("must be a whole number of runs at once, 1 or more, not {}", text);
+          },
+          "INT >= 1"));
   batch->add_option("-o,--output-dir", options->output_dir, "Directory for results, logs and the summary table")
       ->capture_default_str();
   batch->add_option("--set", options->overrides,

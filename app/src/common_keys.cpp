@@ -14,12 +14,18 @@ std::vector<KeySpec> material_keys() {
   const fem::IsotropicMaterial steel;
   return {
       {.path = "material.name", .type = Type::String, .default_text = "steel", .doc = "material name (for the record)"},
+      // From soft gels (1 kPa) to above diamond (1.2e6 MPa): a modulus outside
+      // this overflows or underflows the displacements of any load in range.
       {.path = "material.youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = 1e6,
-       .default_number = steel.youngs_modulus_pa / 1e6, .min = 0, .min_exclusive = true, .doc = "Young's modulus E"},
+       .default_number = steel.youngs_modulus_pa / 1e6, .min = 1e-3, .max = 1e7, .doc = "Young's modulus E",
+       .range_note = "plausible for a solid: from a soft gel to above diamond"},
+      // The range the solver accepts (IsotropicMaterial::validate: -1 < nu < 0.5),
+      // kept off 0.5 where the elasticity matrix becomes singular.
       {.path = "material.poisson_ratio", .type = Type::Number, .default_number = steel.poisson_ratio, .min = -1,
-       .max = 0.4999, .doc = "Poisson's ratio nu (must be below 0.5)"},
+       .max = 0.4999, .min_exclusive = true, .doc = "Poisson's ratio nu (must be below 0.5)"},
       {.path = "material.density_kg_m3", .type = Type::Number, .unit = "kg/m^3", .default_number = steel.density_kg_m3,
-       .min = 0, .doc = "density (for gravity and inertia loads)"},
+       .min = 1, .max = 1e5, .doc = "density (for gravity and inertia loads)", .zero_allowed = true,
+       .range_note = "0 for a massless part, else plausible for a solid: osmium is 22 590 kg/m^3"},
   };
 }
 

@@ -25,7 +25,7 @@ const std::vector<KeySpec>& fe_static_schema() {
   static const meshes::LeverDimensions lever;
   static const fem::IsotropicMaterial steel;
   static const std::vector<KeySpec> schema = with_common_keys({
-      {.path = "case.name", .type = Type::String, .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
+      case_name_key(),
       {.path = "case.type", .type = Type::String, .allowed = {"fe_static"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text, copied into the results"},
       {.path = "geometry.kind", .type = Type::String, .default_text = "lever", .allowed = {"lever", "file"},
@@ -111,6 +111,9 @@ fem::Mesh build_mesh(const CaseFile& c, const Log& log) {
       log.info("meshing {} (element size {:.1f} mm, order {})", file.string(),
                options.element_size_m / kMm, options.order);
       mesh = meshes::mesh_geometry(file, options);
+    // A missing file is the mesh reader's error; a FIFO would block it forever.
+    if (const std::string problem = input_file_problem(file); !problem.empty() && problem != "no such file")
+      fail("{} = \"{}\": {} ({})", c.where("geometry.file"), c.text_value("geometry.file"), problem, file.string());
     }
   }
   log.info("  mesh: {} nodes, {} elements ({}), {:.2f} s", mesh.node_count(),
@@ -133,9 +136,7 @@ void require_set(const Map& sets, const std::string& name, const CaseFile& c,
 FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
   Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   Stopwatch total;
-  const std::string name = c.has("case.name")
-                               ? c.text_value("case.name")
-                               : std::filesystem::absolute(c.path()).parent_path().filename().string();
+  const std::string name = case_name(c);
   log.info("kinetofem: case '{}' ({}), type fe_static", name, c.path().string());
 
   // Fail before the long steps if the results cannot be written.

@@ -34,7 +34,7 @@ const std::vector<KeySpec>& manipulator_schema() {
   static const meshes::ArmDimensions arm;
   static const std::vector<KeySpec> schema = [] {
     std::vector<KeySpec> s = {
-      {.path = "case.name", .type = Type::String, .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
+      case_name_key(),
       {.path = "case.type", .type = Type::String, .allowed = {"manipulator"}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text"},
       {.path = "mechanism.type", .type = Type::String, .allowed = {"lever_chain", "lever"}, .doc = "SPEC §1 lever-chain or SPEC §2 lever (four-bar) manipulator", .required = true},

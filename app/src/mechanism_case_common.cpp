@@ -14,16 +14,14 @@ double MechanismCaseSummary::value(const std::string& name) const {
 std::vector<KeySpec> mechanism_case_keys(const std::string& type) {
   using Type = KeySpec::Type;
   return {
-      {.path = "case.name", .type = Type::String,
-       .doc = "name of the run; results/<name>.h5 (default: the case folder's name)"},
+      case_name_key(),
       {.path = "case.type", .type = Type::String, .allowed = {type}, .doc = "kind of analysis", .required = true},
       {.path = "case.description", .type = Type::String, .doc = "free text"},
   };
 }
 
 std::string mechanism_case_name(const CaseFile& c) {
-  return c.has("case.name") ? c.text_value("case.name")
-                            : std::filesystem::absolute(c.path()).parent_path().filename().string();
+  return case_name(c);
 }
 
 std::filesystem::path mechanism_results_path(const CaseFile&, const RunOptions& options,
@@ -51,6 +49,7 @@ std::vector<double> read_numbers(const CaseFile& c, const std::string& path, std
   for (const auto& item : *array) {
     const auto v = item.is_number() ? item.value<double>() : std::nullopt;
     require(v && std::isfinite(*v), "{} must hold finite numbers only", c.where(path, element));
+    c.check_number(path, element, *v);
     out.push_back(*v * to_si);
   }
   return out;

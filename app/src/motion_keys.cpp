@@ -77,8 +77,9 @@ std::shared_ptr<const mech::MotionLaw> read_motion_law(const CaseFile& c, const 
     require(c.has(prefix + "file", k), "{} = \"csv\": needs 'file' (rows t_s, s in {})", at, angle ? "deg" : "mm");
     std::filesystem::path file = c.text_value(prefix + "file", k);
     if (file.is_relative()) file = c.path().parent_path() / file;
-    require(std::filesystem::is_regular_file(file), "{} = \"{}\": no such file ({})", c.where(prefix + "file", k),
-            c.text_value(prefix + "file", k), file.string());
+    const std::string problem = input_file_problem(file);
+    require(problem.empty(), "{} = \"{}\": {} ({})", c.where(prefix + "file", k), c.text_value(prefix + "file", k),
+            problem, file.string());
     spec.table_file = file;
     spec.table_to_si = angle ? kDeg : kMm;
     try {

@@ -144,8 +144,9 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       require(c.has("part[].file", k), "{}: source = \"file\" needs 'file'", c.where("part[].body", k));
       std::filesystem::path file = c.text_value("part[].file", k);
       if (file.is_relative()) file = c.path().parent_path() / file;
-      require(std::filesystem::is_regular_file(file), "{} = \"{}\": no such file ({})", c.where("part[].file", k),
-              c.text_value("part[].file", k), file.string());
+      const std::string problem = input_file_problem(file);
+      require(problem.empty(), "{} = \"{}\": {} ({})", c.where("part[].file", k), c.text_value("part[].file", k),
+              problem, file.string());
       spec.file = file;
       if (c.has("part[].length_unit", k)) spec.file_options.length_unit_m = c.text_value("part[].length_unit", k) == "mm" ? kMm : 1.0;
       spec.label = fmt::format("part '{}' ({})", body.name, c.text_value("part[].file", k));

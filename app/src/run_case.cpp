@@ -163,3 +163,4 @@ int run_case(const RunOptions& options) {
 }
 
 }  // namespace kinetofem::app
+  case_name(c);  // a name that cannot be a file name is refused before any work

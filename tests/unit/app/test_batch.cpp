@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -293,6 +294,89 @@ TEST(Batch, SweepPlanIsTheCartesianProductOfValuesAndLinspace) {
   const std::string before = plan_batch({c}, {})[0].hash;
   std::ofstream(dir / "bar" / "bar.geo", std::ios::app) << "// changed\n";
   EXPECT_NE(plan_batch({c}, {})[0].hash, before);
+}
+
+// Each parameter's count is capped, and so is their product: three of 100 000
+// values would be 1e15 runs, refused with the count before any run is planned.
+TEST(Batch, SweepBeyondTheMaximumIsRefusedWithItsCount) {
+  const TempDir temp("huge_sweep");
+  const fs::path c = bar_case(temp.path, "bar", "bar",
+                              "\n[sweep]\nparameters = [\"material.youngs_modulus_mpa\", "
+                              "\"material.poisson_ratio\", \"material.density_kg_m3\"]\n"
+                              "linspace = [[1e5, 2e5, 100000], [0.2, 0.3, 100000], [7000, 8000, 100000]]\n");
+  try {
+    plan_batch({c}, {});
+    ADD_FAILURE() << "a sweep of 1e15 runs was planned";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "[sweep] gives 100000 x 100000 x 100000 = 1e+15 runs, more than the 100000 a batch may plan"),
+              std::string::npos)
+        << e.what();
+  }
+  // The limit counts the runs of every case of the batch together.
+  const fs::path c2 = bar_case(temp.path, "bar2", "bar2");
+  const fs::path c3 = bar_case(temp.path, "bar3", "bar3",
+                               "\n[sweep]\nparameters = [\"material.youngs_modulus_mpa\"]\n"
+                               "linspace = [[1e5, 2e5, 100000]]\n");
+  try {
+    plan_batch({c2, c3}, {});
+    ADD_FAILURE() << "100 001 runs were planned";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("[sweep] gives 100000 runs after the 1 run(s) of the cases before it, more "
+                                         "than the 100000 a batch may plan"),
+              std::string::npos)
+        << e.what();
+  }
+  const Command r = kinetofem(fmt::format("batch {} -o {}", c.string(), (temp.path / "out").string()), temp.path);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("kinetofem: error: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1e+15 runs"), std::string::npos) << r.output;
+}
+
+// A case name is a file name: "../../x" would put the run's .log and .h5.hash
+// (and its results) two folders above the output folder.
+TEST(Batch, CaseNameThatLeavesTheOutputFolderFailsThatRunOnly) {
+  const TempDir temp("escape");
+  const fs::path& dir = temp.path;
+  const fs::path bad = bar_case(dir, "bad", "../../x");
+  const fs::path good = bar_case(dir, "good", "good");
+  const fs::path out = dir / "a" / "b" / "out";
+  const Command r = kinetofem(fmt::format("batch {} {} -q -o {}", bad.string(), good.string(), out.string()), dir);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto s = statuses(out);
+  EXPECT_EQ(s.at("good"), "done") << r.output;
+  const std::string csv = read_text(out / "batch_summary.csv");
+  // (CSV doubles the quotes.)
+  EXPECT_NE(csv.find("key 'case.name' = \"\"../../x\"\" cannot be a file name in the output folder"), std::string::npos)
+      << csv;
+  for (const fs::path& p : {dir / "a" / "x.log", dir / "a" / "x.h5.hash", dir / "a" / "x.h5", dir / "x.log"})
+    EXPECT_FALSE(fs::exists(p)) << p << " was written outside the output folder";
+  // A sweep's run names are checked too (here: too long once the point is added).
+  const fs::path long_name = bar_case(dir, "long", std::string(110, 'n'),
+                                      "\n[sweep]\nparameters = [\"material.youngs_modulus_mpa\"]\n"
+                                      "values = [[100000]]\n");
+  const auto runs = plan_batch({long_name}, {});
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_NE(runs[0].plan_error.find("the run name made of case.name and a [sweep] point"), std::string::npos)
+      << runs[0].plan_error;
+}
+
+// --jobs 0 is a clear range error (not CLI11's range of a double, 309 digits);
+// more than kJobsPerThread runs per hardware thread are lowered, and it says so.
+TEST(Batch, JobsOutsideTheirRangeAreClear) {
+  const TempDir temp("jobs");
+  const fs::path c = bar_case(temp.path, "bar", "bar");
+  Command r = kinetofem(fmt::format("batch {} --jobs 0 -o {}", c.string(), (temp.path / "out").string()), temp.path);
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("--jobs: must be a whole number of runs at once, 1 or more, not 0"), std::string::npos) << r.output;
+  EXPECT_LT(r.output.size(), 300u) << r.output;
+  r = kinetofem(fmt::format("batch {} --jobs 1000 -o {}", c.string(), (temp.path / "out").string()), temp.path);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const int threads = std::max(1, int(std::thread::hardware_concurrency()));
+  EXPECT_NE(r.output.find(fmt::format("--jobs 1000 lowered to {}: at most {} runs at once per hardware thread ({} here)",
+                                      kJobsPerThread * threads, kJobsPerThread, threads)),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(Batch, MpiTwoRanksRunEveryCaseExactlyOnce) {

@@ -51,9 +51,15 @@ struct BatchRun {
   std::string plan_error;  // the case file could not be planned: the run fails with this
 };
 
+// The most runs a batch may plan: a sweep's size is the product of its
+// parameters' counts, and a batch beyond this is refused before any run is
+// planned (three parameters of 100 000 values would be 1e15 runs).
+inline constexpr std::size_t kMaxBatchRuns = 100000;
+
 // Reads each case (case.name, geometry.file, [sweep]) and expands sweeps into
 // runs, in the order given. A case that cannot be read becomes one run with
-// plan_error set. Throws Error if two runs share a name.
+// plan_error set. Throws Error if two runs share a name, or if the runs of
+// all cases together would be more than kMaxBatchRuns (the message gives the count).
 std::vector<BatchRun> plan_batch(const std::vector<std::filesystem::path>& cases,
                                  const std::vector<std::string>& overrides);
 
@@ -92,11 +98,15 @@ class BatchComm {
   virtual std::vector<std::string> gather(const std::string& mine) const { return {mine}; }
 };
 
+// Runs at once are capped at this many per hardware thread (each run is a
+// process with its own mesh and factor): more only add memory and switching.
+inline constexpr int kJobsPerThread = 4;
+
 struct BatchOptions {
   std::vector<std::filesystem::path> cases;
   std::filesystem::path output_dir = "results";
   std::vector<std::string> overrides;  // applied to every run
-  int jobs = 1;                        // runs at once (per MPI rank)
+  int jobs = 1;                        // runs at once (per MPI rank), capped by kJobsPerThread
   bool force = false;                  // rerun up-to-date runs too
   bool quiet = false;                  // no progress lines
   std::filesystem::path executable;    // the kinetofem to start; empty: /proc/self/exe

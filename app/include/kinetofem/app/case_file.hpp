@@ -41,12 +41,42 @@ struct KeySpec {
   std::optional<double> default_number;           // Vector3: the same value in all three components
   std::optional<std::array<double, 3>> default_vector;  // Vector3 of different components
   std::optional<std::string> default_text;
-  double min = -1e300, max = 1e300;  // allowed range, in the file's unit
+  // Allowed range, in the file's unit. A key that keeps a default limit gets
+  // its unit's plausible range instead (plausible_range: a mass in kg, a
+  // force in N, ...), so that no value in range can overflow the solution.
+  double min = -1e300, max = 1e300;
   bool min_exclusive = false;
   std::vector<std::string> allowed;  // allowed strings (String, StringList)
   std::string doc;
   bool required = false;
+  // 0 is allowed besides [min, max] (e.g. a density: 0 = massless, else 1..1e5 kg/m^3).
+  bool zero_allowed = false;
+  std::string range_note;  // why the range, shown in its message ("plausible for a solid")
+  bool file_name = false;  // String: becomes a file name in the output folder (check_file_name)
 };
+
+// The longest run name in bytes: <name>.summary.toml.tmp<pid> and the other
+// files a run and a batch write for it stay well inside NAME_MAX (255).
+inline constexpr std::size_t kMaxRunNameBytes = 120;
+
+// Throws Error "<at> = "<name>" cannot be a file name in the output folder:
+// ..." unless `name` can name a run's files in the output folder: not empty,
+// at most kMaxRunNameBytes, not "." or "..", no '/' or '\\', no control
+// character (NUL included: the whole string is checked, not a C-string prefix).
+void check_file_name(const std::string& name, const std::string& at);
+
+// The spec with its unit's plausible range where it keeps a default limit
+// (+-1e300): e.g. a mass at most 1e6 kg, a force at most 1e9 N in magnitude,
+// a length at most 1e6 mm, a duration at most 1e7 s. Units without a
+// plausible range (angles, ratios, counts) are returned unchanged. Applied by
+// CaseFile to every key it reads and by schema_template.
+KeySpec plausible_range(KeySpec spec);
+
+// ">=0.001 and <=1e+07 MPa (plausible for a solid)": the range of a number
+// key with its unit, for its out-of-range message ("must be ...") and the
+// case template; "" for a key without limits. The default limits (+-1e300)
+// are shown only when `value` lies beyond them.
+std::string range_text(const KeySpec& spec, std::optional<double> value = std::nullopt);
 
 class CaseFile {
  public:
@@ -85,6 +115,11 @@ class CaseFile {
   // Number of elements of an array of tables (0 if absent).
   std::size_t count(const std::string& array_path) const;
 
+  // Error (the out-of-range message of the key) unless `value`, in the file's
+  // unit, is finite and within the range of `path`: for the elements of keys of
+  // Type::Array that their reader checks.
+  void check_number(const std::string& path, std::size_t element, double value) const;
+
   // "file:line: key" for messages ("file: key 'k' (--set k=v)" for an override).
   std::string where(const std::string& path, std::size_t element = 0) const;
 
@@ -104,6 +139,19 @@ class CaseFile {
   std::vector<std::string> override_texts_;
   std::vector<std::string> override_keys_;  // as shown: "force[0].total_n"
 };
+
+// What keeps `file` from being read as an input file ("" if nothing): "no
+// such file", "is a directory", "is not a regular file (a FIFO)", "is a
+// symlink loop", "cannot be read: <reason>". A FIFO is refused before it is
+// opened, which would wait for a writer forever.
+std::string input_file_problem(const std::filesystem::path& file);
+
+// The run's name: case.name, else the name of the case file's folder (as
+// `kinetofem batch` names it too); either checked by check_file_name.
+std::string case_name(const CaseFile& case_file);
+// The key case.name, declared once for every case type and `kinetofem batch`.
+KeySpec case_name_key();
+std::string default_case_name(const std::filesystem::path& case_path);
 
 // Splits "key=value" at the first '=' (key and value trimmed); Error naming
 // the override if there is no '=' or no key.

@@ -54,7 +54,7 @@ MechanismCaseSummary run_gripper_study(const CaseFile& case_file, const RunOptio
 
 // The [case] keys every mechanism case type declares (type restricted to `type`).
 std::vector<KeySpec> mechanism_case_keys(const std::string& type);
-// case.name, or the case folder's name.
+// case.name, or the case folder's name (case_name(): checked as a file name).
 std::string mechanism_case_name(const CaseFile& case_file);
 // options.output_dir / <name>.h5, creating the directory (Error naming it).
 std::filesystem::path mechanism_results_path(const CaseFile& case_file, const RunOptions& options,
