@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
@@ -84,8 +85,9 @@ void add_part_keys(std::vector<KeySpec>& s) {
                       "own mass_kg, com_mm, inertia_kgm2 (both are printed)"});
   for (const auto& d : dimension_keys()) {
     const double def = d.lever ? lever.*(d.lever_field) : arm.*(d.arm_field);
-    s.push_back({.path = "part[]." + d.key, .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0, .min_exclusive = true,
-                 .doc = d.doc + fmt::format(" (default {:g} mm)", def / kMm)});
+    s.push_back({.path = "part[]." + d.key, .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0,
+                 .max = kMaxPartDimensionMm, .min_exclusive = true,
+                 .doc = d.doc + fmt::format(" (default {:g} mm)", def / kMm), .range_note = kPartDimensionNote});
   }
   s.push_back({.path = "face_set", .type = Type::TableArray,
                .doc = "named faces of a part file that has none (STEP from CAD): the surfaces inside a box"});

@@ -32,6 +32,19 @@ void MeshOptions::validate() const {
           "mesh option time_limit_s = {} must be a positive time in s", time_limit_s);
 }
 
+double estimated_element_count(double volume_m3, const MeshOptions& options) {
+  // Gmsh's Delaunay tetrahedra at MeshSizeMax = h: about 6 per h^3 (a regular
+  // tetrahedron of edge h fills h^3 / 8.5; edges come out shorter than h);
+  // each tetrahedron split into 4 hexahedra.
+  const double h = options.element_size_m;
+  const double tetrahedra = 6.0 * volume_m3 / (h * h * h);
+  switch (options.family) {
+    case ElementFamily::Tetrahedra: return tetrahedra;
+    case ElementFamily::Hexahedra: return 4.0 * tetrahedra;
+  }
+  return tetrahedra;
+}
+
 namespace {
 
 // Every Gmsh option kinetofem sets for meshing, by name: set by
@@ -230,6 +243,30 @@ fem::Mesh mesh_geometry_in_this_process(const std::filesystem::path& file, const
             "{}: the part spans {:.4g} m, {:.0f} elements of {:.4g} m across (at most {:.0f}): is its length unit "
             "right, or the element size?",
             context, span, span / options.element_size_m, options.element_size_m, kMaxElementsAcross);
+    // A part within that span can still need far too many elements (a long
+    // plate at a fine size): estimate the count from the volume before
+    // meshing. OpenCASCADE knows each volume's size; the built-in kernel's
+    // volumes are bounded by the box instead (an overestimate).
+    double volume_m3 = 0.0;
+    try {
+      gmsh::vectorpair volumes;
+      gmsh::model::getEntities(volumes, 3);
+      for (const auto& [dim, tag] : volumes) {
+        double mass = 0.0;
+        gmsh::model::occ::getMass(dim, tag, mass);
+        volume_m3 += mass;
+      }
+      volume_m3 *= std::pow(job.model_unit_m, 3);
+    } catch (...) {
+      volume_m3 = 0.0;
+    }
+    if (!(volume_m3 > 0))
+      volume_m3 = (box[3] - box[0]) * (box[4] - box[1]) * (box[5] - box[2]) * std::pow(job.model_unit_m, 3);
+    const double estimate = estimated_element_count(volume_m3, options);
+    require(estimate <= kMaxEstimatedElements,
+            "{}: the part's volume {:.4g} m^3 at an element size of {:.4g} m needs about {:.3g} elements, more "
+            "than the {:.0e} allowed: make the element size larger (or the part smaller)",
+            context, volume_m3, options.element_size_m, estimate, kMaxEstimatedElements);
   }
 
   if (job.before_meshing) job.before_meshing(session, context);

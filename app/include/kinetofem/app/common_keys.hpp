@@ -29,6 +29,11 @@ std::vector<KeySpec> sweep_keys();
 // mesh.time_limit_s: the time limit of reading and meshing one geometry
 // file (MeshOptions::time_limit_s), for every case type that meshes.
 KeySpec mesh_time_limit_key();
+// The largest dimension of a parametric part (lever, arm, ...), mm, and the
+// note its range message gives: beyond it OpenCASCADE can stay busy for
+// minutes building the geometry, and no mechanism part is that large.
+inline constexpr double kMaxPartDimensionMm = 1e5;
+inline constexpr const char* kPartDimensionNote = "a plausible part dimension: up to 100 m";
 // [mesh] of the parts of a motion case: element_size_mm, order, cache, time_limit_s.
 std::vector<KeySpec> part_mesh_keys();
 // Mesh options of the parts; the cache in <output_dir>/mesh_cache.

@@ -60,6 +60,14 @@ struct MeshOptions {
   void validate() const;  // throws Error naming the bad option
 };
 
+// The number of volume elements Gmsh makes for `volume_m3` at
+// options.element_size_m, roughly (6 tetrahedra per element size cubed, 4
+// hexahedra per tetrahedron). mesh_geometry refuses a geometry whose estimate
+// exceeds kMaxEstimatedElements before meshing: such a mesh would not fit in
+// memory or keep Gmsh busy for hours.
+double estimated_element_count(double volume_m3, const MeshOptions& options);
+inline constexpr double kMaxEstimatedElements = 5e6;
+
 // ONELAB parameters ("Group/name" -> value) set before a .geo file is read:
 // they override the file's DefineConstant[] defaults of the same name. Gmsh
 // ignores names the file does not define.
