@@ -156,7 +156,10 @@ KeySpec case_name_key() {
 
 std::string default_case_name(const std::filesystem::path& case_path) {
   // Normalised first: "../case.toml" is in the folder above, not in one named "..".
-  return std::filesystem::absolute(case_path).lexically_normal().parent_path().filename().string();
+  // (absolute() fails only without a current directory: the name then comes from the path as given.)
+  std::error_code ec;
+  const std::filesystem::path full = std::filesystem::absolute(case_path, ec);
+  return (ec ? case_path : full).lexically_normal().parent_path().filename().string();
 }
 
 std::string case_name(const CaseFile& c) {
