@@ -7,6 +7,7 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/meshes/lever.hpp"
+#include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
@@ -80,7 +81,7 @@ const std::vector<KeySpec>& fe_static_schema() {
 
 namespace {
 
-fem::Mesh build_mesh(const CaseFile& c, const Log& log) {
+fem::Mesh build_mesh(const CaseFile& c, const Log& log, bool trust_geometry_file) {
   meshes::MeshOptions options;
   options.element_size_m = c.number("mesh.element_size_mm");
   options.order = int(c.integer("mesh.order"));
@@ -116,6 +117,13 @@ fem::Mesh build_mesh(const CaseFile& c, const Log& log) {
     } else {
       log.info("meshing {} (element size {:.1f} mm, order {})", file.string(),
                options.element_size_m / kMm, options.order);
+      if (file.extension() == ".geo") {
+        // Before Gmsh reads the script: what it may do besides geometry.
+        meshes::GeoScanPolicy policy;
+        policy.read_roots = {c.path().parent_path().empty() ? "." : c.path().parent_path()};
+        policy.trusted = trust_geometry_file;
+        meshes::scan_geo_file(file, policy);
+      }
       mesh = meshes::mesh_geometry(file, options);
     // A missing file is the mesh reader's error; a FIFO would block it forever.
     if (const std::string problem = input_file_problem(file); !problem.empty() && problem != "no such file")
@@ -151,7 +159,7 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
   if (ec) fail("{}: cannot create the output directory: {}", options.output_dir.string(), ec.message());
 
   fem::FeModel model;
-  model.mesh = build_mesh(c, log);
+  model.mesh = build_mesh(c, log, options.trust_part_files);
   model.material = read_material(c);
 
   require(c.count("support") > 0, "{}: no [[support]]: a static model needs supports",

@@ -417,6 +417,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
            name, c.path().string(), m.bodies.size(), m.joints.size(), m.motion_drives.size(), m.force_drives.size(),
            m.springs.size(), c.count("part"));
   run_case.parts = read_parts(c, m);
+  for (auto& part : run_case.parts) part.file_options.trusted = options.trust_part_files;
   run_case.times = mech::equally_spaced_times(c.number("simulation.duration_s"), c.integer("simulation.output_times"));
   const std::string method = c.text_value("simulation.method");
   run_case.dynamics.method = method == "kinematic" ? pipeline::DynamicsMethod::Kinematic

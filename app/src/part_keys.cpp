@@ -150,6 +150,7 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       require(problem.empty(), "{} = \"{}\": {} ({})", c.where("part[].file", k), c.text_value("part[].file", k),
               problem, file.string());
       spec.file = file;
+      spec.file_options.case_folder = c.path().parent_path().empty() ? "." : c.path().parent_path();
       if (c.has("part[].length_unit", k)) spec.file_options.length_unit_m = c.text_value("part[].length_unit", k) == "mm" ? kMm : 1.0;
       spec.label = fmt::format("part '{}' ({})", body.name, c.text_value("part[].file", k));
     } else {

@@ -16,6 +16,10 @@ struct RunOptions {
   bool quiet = false;
   std::string command_line;  // recorded in the results' provenance
   std::vector<std::string> overrides;  // --set KEY=VALUE, applied after the case file is read
+  // --trust-part-files: the person running kinetofem trusts the case's .geo
+  // part and geometry files to run programs, exit, write files and read
+  // outside the case folder (meshes/geo_file_scan.hpp, docs/robustness.md).
+  bool trust_part_files = false;
 };
 
 // Key results of a finished run, written by each job as
