@@ -83,8 +83,8 @@ MechanismCaseSummary run_four_bar_study(const CaseFile& c, const RunOptions& opt
   w.write_history("lever_chain.H.position", "m", h_chain, {"x", "y"});
   w.write_history("lever_chain.transmission_angle", "rad", mu_chain);
   w.write_history("four_bar.assembles", "1", assembled);
-  w.write_history("four_bar.H.position", "m", h_four, {"x", "y"});
-  w.write_history("four_bar.transmission_angle", "rad", mu_four);
+  w.write_history_where_defined("four_bar.H.position", "m", h_four, {"x", "y"});
+  w.write_history_where_defined("four_bar.transmission_angle", "rad", mu_four);
   w.commit();
 
   const auto& range = s.four_bar_range_dphi;

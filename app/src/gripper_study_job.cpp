@@ -144,9 +144,9 @@ MechanismCaseSummary run_gripper_study(const CaseFile& c, const RunOptions& opti
   w.set_mechanism_time(times);
   w.write_history("crank.phi", "rad", phi);
   w.write_history("assembles", "1", assembles);
-  w.write_history("U_V", "1", uv);
-  w.write_history("theta12", "rad", th12);
-  w.write_history("theta23", "rad", th23);
+  w.write_history_where_defined("U_V", "1", uv);
+  w.write_history_where_defined("theta12", "rad", th12);
+  w.write_history_where_defined("theta23", "rad", th23);
   w.write_history("in_operating_range", "1", inside, {"index_only", "with_pressure_limits"});
   w.commit();
 

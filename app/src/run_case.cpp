@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "kinetofem/app/case_types.hpp"
@@ -96,6 +98,29 @@ RunSummary summary_of(const LinkageRun& r) {
   return s;
 }
 
+// +inf in a summary value means "never" only for a fatigue life (no damage) and a settling time.
+bool summary_may_be_infinite(const std::string& key) {
+  return key.starts_with("fatigue_min_life_") || key.starts_with("fatigue_life_") ||
+         key.starts_with("vibration_settling_time_");
+}
+
+// Every summary value is finite (or a documented +inf). Else the run's results
+// files are removed: a run with a non-finite key result leaves no results.
+void require_finite_summary(const RunSummary& s) {
+  std::vector<std::pair<std::string, double>> values = {{"max_von_mises_mpa", s.max_von_mises_pa},
+                                                        {"max_displacement_mm", s.max_displacement_m}};
+  values.insert(values.end(), s.extra.begin(), s.extra.end());
+  for (const auto& [key, value] : values) {
+    if (std::isfinite(value) || (value > 0 && summary_may_be_infinite(key))) continue;
+    std::error_code ec;
+    std::filesystem::remove(s.results_file, ec);
+    std::filesystem::remove(std::filesystem::path(s.results_file).replace_extension(".xdmf"), ec);
+    fail("summary value '{}' of '{}' is {}: the results '{}' are removed; a non-finite result comes from an "
+         "overflow or 0/0 upstream (a material constant, load, mass or dimension far outside its plausible range?)",
+         key, s.name, value, s.results_file.string());
+  }
+}
+
 RunSummary summary_of(const MechanismCaseSummary& m, const char* type) {
   return {.type = type, .results_file = m.results_file, .extra = m.values};
 }
@@ -153,14 +178,15 @@ int run_case(const RunOptions& options) {
       /*allow_unknown=*/true, options.overrides);
   const CaseType& type = case_type_named(any.text_value("case.type"), options.case_path.string() + ": ");
   const CaseFile c = CaseFile::load(options.case_path, type.schema(), /*allow_unknown=*/false, options.overrides);
+  case_name(c);  // a name that cannot be a file name is refused before any work
   Stopwatch clock;
   RunSummary summary = type.run(c, options);
   // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml, for every case type.
   summary.name = summary.results_file.stem().string();
   summary.wall_time_s = clock.seconds();
+  require_finite_summary(summary);
   write_run_summary(options.output_dir, summary);
   return 0;
 }
 
 }  // namespace kinetofem::app
-  case_name(c);  // a name that cannot be a file name is refused before any work

@@ -106,6 +106,18 @@ struct ResultsFile::Impl {
     h5::Handle d = h5::open_dataset(io, file.get(), p, p);
     return h5::read_int64s(io, d.get(), p);
   }
+
+  // Indices read from the file (node numbers, element numbers, steps), each in
+  // 0 .. count - 1: a damaged file must be an error naming the dataset, not a
+  // read out of bounds in whatever uses the index.
+  std::vector<std::int64_t> indices(const std::string& p, std::int64_t count, const char* what) const {
+    std::vector<std::int64_t> values = int64s(p);
+    for (size_t k = 0; k < values.size(); ++k)
+      if (values[k] < 0 || values[k] >= count)
+        fail("'{}': dataset '{}' entry {} is {} {}, outside 0 .. {} ({} {}s): the results file is damaged",
+             path.string(), p, k, what, values[k], count - 1, count, what);
+    return values;
+  }
 };
 
 ResultsFile::ResultsFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -180,15 +192,20 @@ fem::Mesh ResultsFile::read_mesh(const std::string& body) const {
     fem::ElementBlock block;
     block.type =
         element_type_named(h5::read_string_attribute(f.io, group.get(), p, "element_type"), p);
-    block.connectivity = f.int64s(join(p, layout::kConnectivity));
+    const std::string connectivity = join(p, layout::kConnectivity);
+    block.connectivity = f.indices(connectivity, mesh.node_count(), "node");
+    const size_t per_element = size_t(fem::nodes_per_element(block.type));
+    require(block.connectivity.size() % per_element == 0,
+            "'{}': dataset '{}' has {} entries, not a multiple of {} nodes per {}: the results file is damaged",
+            f.path.string(), connectivity, block.connectivity.size(), per_element, fem::name_of(block.type));
     mesh.blocks.push_back(std::move(block));
   }
   const std::string node_sets = join(mesh_path, layout::kNodeSets);
   for (const auto& set : f.children_of(node_sets, h5::ChildKind::Dataset))
-    mesh.node_sets[set] = f.int64s(join(node_sets, set));
+    mesh.node_sets[set] = f.indices(join(node_sets, set), mesh.node_count(), "node");
   const std::string element_sets = join(mesh_path, layout::kElementSets);
   for (const auto& set : f.children_of(element_sets, h5::ChildKind::Dataset))
-    mesh.element_sets[set] = f.int64s(join(element_sets, set));
+    mesh.element_sets[set] = f.indices(join(element_sets, set), mesh.element_count(), "element");
   const std::string face_sets = join(mesh_path, layout::kFaceSets);
   for (const auto& set : f.children_of(face_sets, h5::ChildKind::Group)) {
     const std::string set_path = join(face_sets, set);
@@ -198,7 +215,12 @@ fem::Mesh ResultsFile::read_mesh(const std::string& body) const {
       h5::Handle group = h5::open_group(f.io, f.file.get(), p, p);
       fem::FaceBlock faces;
       faces.type = face_type_named(h5::read_string_attribute(f.io, group.get(), p, "face_type"), p);
-      faces.connectivity = f.int64s(join(p, layout::kConnectivity));
+      const std::string connectivity = join(p, layout::kConnectivity);
+      faces.connectivity = f.indices(connectivity, mesh.node_count(), "node");
+      const size_t per_face = size_t(fem::nodes_per_face(faces.type));
+      require(faces.connectivity.size() % per_face == 0,
+              "'{}': dataset '{}' has {} entries, not a multiple of {} nodes per {}: the results file is damaged",
+              f.path.string(), connectivity, faces.connectivity.size(), per_face, fem::name_of(faces.type));
       blocks.push_back(std::move(faces));
     }
   }
@@ -321,11 +343,6 @@ EnvelopeData ResultsFile::read_envelope(const std::string& body, const std::stri
   const FieldData value = f.field(group, layout::kEnvelopeValue, "envelope value");
   out.values = value.values;
   out.units = value.units;
-  const auto steps = f.int64s(join(group, layout::kEnvelopeStep));
-  require(steps.size() == size_t(out.values.size()), "envelope '{}' of body '{}': {} steps for {} values",
-          field, body, steps.size(), out.values.size());
-  out.step.resize(out.values.rows(), out.values.cols());
-  std::copy(steps.begin(), steps.end(), out.step.data());
   h5::Handle g = h5::open_group(f.io, f.file.get(), group, group);
   out.operation = h5::read_string_attribute(f.io, g.get(), group, "operation");
   const std::string own_time = join(group, layout::kTime);
@@ -335,6 +352,12 @@ EnvelopeData ResultsFile::read_envelope(const std::string& body, const std::stri
   } else {
     out.times_s = series_times(body);
   }
+  // Each step indexes the envelope's times.
+  const auto steps = f.indices(join(group, layout::kEnvelopeStep), std::int64_t(out.times_s.size()), "step");
+  require(steps.size() == size_t(out.values.size()), "envelope '{}' of body '{}': {} steps for {} values",
+          field, body, steps.size(), out.values.size());
+  out.step.resize(out.values.rows(), out.values.cols());
+  std::copy(steps.begin(), steps.end(), out.step.data());
   return out;
 }
 

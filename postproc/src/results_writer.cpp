@@ -1,16 +1,23 @@
 #include "kinetofem/postproc/results_writer.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <system_error>
 
 #include "hdf5_io.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/termination_cleanup.hpp"
 #include "kinetofem/core/version.hpp"
 #include "kinetofem/postproc/vtk_node_order.hpp"
 #include "xdmf_document.hpp"
@@ -51,6 +58,71 @@ const double* contiguous(const Eigen::Ref<const FieldMatrix>& values, FieldMatri
 
 // Chunk rows for a per-step slab of N x c doubles: at most ~1 MiB per chunk,
 // so a chunk fits HDF5's default chunk cache and a step is a few whole chunks.
+// A non-finite result: never written (ParaView, `post` and the summaries would
+// show inf or nan as if they were results). +inf is kept only where it has a
+// documented meaning, "never" (a fatigue life without damage; a table's
+// settling time that never comes: write_table).
+struct NonFinite {
+  Eigen::Index row = 0, column = 0;
+  double value = 0.0;
+};
+
+template <typename Matrix>
+std::optional<NonFinite> first_non_finite(const Matrix& values, bool allow_plus_infinity = false) {
+  if (values.allFinite()) return std::nullopt;
+  for (Eigen::Index i = 0; i < values.rows(); ++i)
+    for (Eigen::Index c = 0; c < values.cols(); ++c) {
+      const double x = values(i, c);
+      if (std::isfinite(x) || (allow_plus_infinity && x == std::numeric_limits<double>::infinity()))
+        continue;
+      return NonFinite{i, c, x};
+    }
+  return std::nullopt;
+}
+
+bool may_be_plus_infinity(const std::string& field) {
+  return field == layout::kFatigueLifeCycles || field == layout::kFatigueLifeHours;
+}
+
+// "<quantity> is <value> at <location>: not written to '<file>'; <likely cause>".
+[[noreturn]] void fail_non_finite(const std::string& quantity, double value, const std::string& location,
+                                  const std::filesystem::path& file) {
+  fail("{} is {} at {}: not written to '{}'; a non-finite result comes from an overflow or 0/0 upstream "
+       "(a material constant, load, mass or dimension far outside its plausible range?)",
+       quantity, value, location, file.string());
+}
+
+// A stale temporary that is a symbolic link (left by anyone who can write the
+// output folder) is removed, never written through: writing would overwrite
+// the link's target, and the rename would put the link under the final name.
+void remove_if_symlink(const std::filesystem::path& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) == 0 && S_ISLNK(info.st_mode))
+    require(::unlink(path.c_str()) == 0, "cannot remove the stale symbolic link '{}': {}", path.string(),
+            std::strerror(errno));
+}
+
+// Writes `text` to a new or truncated regular file, never through a symbolic link.
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  remove_if_symlink(path);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+  require(fd >= 0, "cannot create '{}': {}", path.string(), std::strerror(errno));
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = errno;
+      ::close(fd);
+      fail("cannot write '{}': {}", path.string(), std::strerror(error));
+    }
+    written += std::size_t(n);
+  }
+  require(::close(fd) == 0, "cannot write '{}': {}", path.string(), std::strerror(errno));
+}
+
+std::string at_time(double time_s) { return fmt::format("t = {} s", time_s); }
+
 hsize_t chunk_rows(fem::Index rows, int components) {
   const hsize_t limit = std::max<hsize_t>(1, (hsize_t(1) << 20) / (8 * hsize_t(components)));
   return std::max<hsize_t>(1, std::min<hsize_t>(hsize_t(rows), limit));
@@ -62,6 +134,8 @@ namespace detail {
 // The open temporary file and what the XDMF will need; shared by the writer and its bodies.
 struct FileState {
   std::filesystem::path final_h5, temporary_h5, final_xdmf, temporary_xdmf;
+  // Ctrl-C or SIGTERM while writing removes the temporaries (a SIGKILL cannot).
+  core::RemoveOnTermination remove_h5_on_signal, remove_xdmf_on_signal;
   h5::H5Io io;
   h5::Handle file;
   h5::Handle bodies;
@@ -81,6 +155,8 @@ struct FileState {
         temporary_h5(path.string() + ".tmp"),
         final_xdmf(std::filesystem::path(path).replace_extension(".xdmf")),
         temporary_xdmf(final_xdmf.string() + ".tmp"),
+        remove_h5_on_signal(temporary_h5),
+        remove_xdmf_on_signal(temporary_xdmf),
         io(temporary_h5.string()) {}
 
   void check_writable() const {
@@ -239,6 +315,9 @@ void BodyWriter::write_static(const std::string& name, const std::string& units,
           values.rows(), node_count_);
   require(values.cols() > 0, "static field '{}' of body '{}' has no columns", name, name_);
   require_components(component_names, values.cols(), name);
+  if (const auto bad = first_non_finite(values, may_be_plus_infinity(name)))
+    fail_non_finite(fmt::format("static field '{}' ({}) of body '{}'", name, units, name_), bad->value,
+                    fmt::format("node {} (component {})", bad->row, bad->column), file_.final_h5);
   file_.guarded([&] {
     const h5::H5Io& io = file_.io;
     const std::string group_path = join(s.path, layout::kStatic);
@@ -269,6 +348,9 @@ void BodyWriter::write_element_field(const std::string& name, const std::string&
           values.rows(), element_count_);
   require(values.cols() > 0, "element field '{}' of body '{}' has no columns", name, name_);
   require_components(component_names, values.cols(), name);
+  if (const auto bad = first_non_finite(values, may_be_plus_infinity(name)))
+    fail_non_finite(fmt::format("element field '{}' ({}) of body '{}'", name, units, name_), bad->value,
+                    fmt::format("element {} (component {})", bad->row, bad->column), file_.final_h5);
   file_.guarded([&] {
     const h5::H5Io& io = file_.io;
     const std::string group_path = join(s.path, layout::kElementFields);
@@ -385,6 +467,10 @@ fem::Index BodyWriter::write_step(double time_s, std::initializer_list<StepValue
             "body '{}' step {} (t = {} s): field '{}' is {} x {}, expected {} x {}", name_, step,
             time_s, given.name, given.values.rows(), given.values.cols(), node_count_,
             it->components);
+    if (const auto bad = first_non_finite(given.values, may_be_plus_infinity(given.name)))
+      fail_non_finite(fmt::format("series field '{}' ({}) of body '{}' at {} (step {})", given.name, it->units,
+                                  name_, at_time(time_s), step),
+                      bad->value, fmt::format("node {} (component {})", bad->row, bad->column), file_.final_h5);
     by_field[f] = &given;
   }
   for (size_t f = 0; f < s.fields.size(); ++f)
@@ -446,6 +532,9 @@ void BodyWriter::write_envelope(const std::string& name, const std::string& unit
   require(step.rows() == values.rows() && step.cols() == values.cols(),
           "envelope '{}' of body '{}': step indices are {} x {}, values {} x {}", name, name_,
           step.rows(), step.cols(), values.rows(), values.cols());
+  if (const auto bad = first_non_finite(values, may_be_plus_infinity(name)))
+    fail_non_finite(fmt::format("envelope '{}' ({} {}) of body '{}'", name, operation, units, name_), bad->value,
+                    fmt::format("node {} (component {})", bad->row, bad->column), file_.final_h5);
   file_.guarded([&] {
     const h5::H5Io& io = file_.io;
     const std::string group_path = join(s.path, layout::kEnvelopes);
@@ -491,6 +580,19 @@ void BodyWriter::write_load_patterns(const LoadPatternData& p) {
               p.stress_pa.rows() == 6 * node_count_ && p.stress_pa.cols() == m,
           "load patterns of body '{}': pattern fields do not fit its {} nodes and {} patterns", name_, node_count_, m);
   require(!s.load_patterns_written, "body '{}' already has load patterns", name_);
+  // coefficients: pattern x time; displacement and stress: node-major rows x pattern.
+  if (const auto bad = first_non_finite(p.coefficients))
+    fail_non_finite(fmt::format("load pattern coefficients of body '{}' (pattern '{}') at {}", name_,
+                                p.names[size_t(bad->row)], at_time(p.time_s[size_t(bad->column)])),
+                    bad->value, fmt::format("output time {}", bad->column), file_.final_h5);
+  if (const auto bad = first_non_finite(p.elastic_displacement_m))
+    fail_non_finite(fmt::format("load pattern displacement (m) of body '{}' (pattern '{}')", name_,
+                                p.names[size_t(bad->column)]),
+                    bad->value, fmt::format("node {} (component {})", bad->row / 3, bad->row % 3), file_.final_h5);
+  if (const auto bad = first_non_finite(p.stress_pa))
+    fail_non_finite(fmt::format("load pattern stress (Pa) of body '{}' (pattern '{}')", name_,
+                                p.names[size_t(bad->column)]),
+                    bad->value, fmt::format("node {} (component {})", bad->row / 6, bad->row % 6), file_.final_h5);
   file_.guarded([&] {
     const h5::H5Io& io = file_.io;
     const std::string path = join(s.path, layout::kLoadPatterns);
@@ -533,6 +635,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const Provenance
   detail::FileState& f = *file_;
   const h5::H5Io& io = f.io;
   try {
+    remove_if_symlink(f.temporary_h5);
     f.file = h5::Handle(KF_H5(io, "/", H5Fcreate, f.temporary_h5.c_str(), H5F_ACC_TRUNC,
                               H5P_DEFAULT, H5P_DEFAULT),
                         H5Fclose);
@@ -622,6 +725,19 @@ void ResultsWriter::set_mechanism_time(const std::vector<double>& time_s) {
 void ResultsWriter::write_history(const std::string& name, const std::string& units,
                                   const Eigen::Ref<const FieldMatrix>& values,
                                   const std::vector<std::string>& component_names) {
+  write_history(name, units, values, component_names, /*nan_where_undefined=*/false);
+}
+
+void ResultsWriter::write_history_where_defined(const std::string& name, const std::string& units,
+                                                const Eigen::Ref<const FieldMatrix>& values,
+                                                const std::vector<std::string>& component_names) {
+  write_history(name, units, values, component_names, /*nan_where_undefined=*/true);
+}
+
+void ResultsWriter::write_history(const std::string& name, const std::string& units,
+                                  const Eigen::Ref<const FieldMatrix>& values,
+                                  const std::vector<std::string>& component_names,
+                                  bool nan_where_undefined) {
   detail::FileState& f = *file_;
   f.check_writable();
   require_valid_name(name, "history");
@@ -632,6 +748,10 @@ void ResultsWriter::write_history(const std::string& name, const std::string& un
           "history '{}' has {} rows; the mechanism time grid has {}", name, values.rows(),
           f.mechanism_time_s.size());
   require_components(component_names, values.cols(), name);
+  if (const auto bad = nan_where_undefined ? first_non_finite(values.array().isNaN().select(0.0, values))
+                                            : first_non_finite(values))
+    fail_non_finite(fmt::format("history '{}' ({}) at {}", name, units, at_time(f.mechanism_time_s[size_t(bad->row)])),
+                    bad->value, fmt::format("time index {} (component {})", bad->row, bad->column), f.final_h5);
   f.guarded([&] {
     const std::string path = fmt::format("/{}/{}", layout::kMechanism, name);
     const hsize_t dims[2] = {hsize_t(values.rows()), hsize_t(values.cols())};
@@ -656,6 +776,9 @@ void ResultsWriter::write_table(const std::string& name, const std::string& unit
   require(!f.table_names.contains(name), "table '{}' is already written", name);
   require(values.cols() > 0, "table '{}' has no columns", name);
   require_components(component_names, values.cols(), name);
+  if (const auto bad = first_non_finite(values, /*allow_plus_infinity=*/true))
+    fail_non_finite(fmt::format("table '{}' ({})", name, units), bad->value,
+                    fmt::format("row {} (column {})", bad->row, bad->column), f.final_h5);
   f.guarded([&] {
     const std::string group_path = fmt::format("/{}", layout::kTables);
     if (!f.tables.valid()) f.tables = h5::make_group(f.io, f.file.get(), layout::kTables, group_path);
@@ -699,13 +822,7 @@ void ResultsWriter::commit() {
     mechanism.times_s = f.mechanism_time_s;
     mechanism.histories = f.xdmf_histories;
     const std::string text = xdmf::document(f.final_h5.filename().string(), grids, mechanism);
-    {
-      std::ofstream out(f.temporary_xdmf, std::ios::binary | std::ios::trunc);
-      require(bool(out), "cannot create '{}'", f.temporary_xdmf.string());
-      out << text;
-      out.close();
-      require(bool(out), "cannot write '{}'", f.temporary_xdmf.string());
-    }
+    write_text_file(f.temporary_xdmf, text);
     std::error_code ec;
     std::filesystem::rename(f.temporary_h5, f.final_h5, ec);
     require(!ec, "cannot rename '{}' to '{}': {}", f.temporary_h5.string(), f.final_h5.string(),

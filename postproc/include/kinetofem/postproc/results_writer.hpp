@@ -37,6 +37,12 @@
 //   writer.write_table("vibration.response.time", "s", t_response);  // (n x 1), any n
 //   writer.commit();
 //
+// Finite results only: every value written (fields, steps, envelopes, load patterns, histories,
+// tables) is checked first; an inf or NaN is an Error naming the quantity, the body, the time
+// and the node (nothing of it is written, and the unwinding run leaves no results file). +inf
+// is kept where it means "never": the fatigue life fields (layout::kFatigueLifeCycles,
+// kFatigueLifeHours) and tables.
+//
 // Names of bodies, fields, sets, histories and tables: letters, digits, '_', '-', '.'
 // (they become HDF5 link names and XDMF attribute names).
 #include <filesystem>
@@ -162,11 +168,17 @@ class ResultsWriter {
   void write_history(const std::string& name, const std::string& units,
                      const Eigen::Ref<const FieldMatrix>& values,
                      const std::vector<std::string>& component_names = {});
+  // A history that has no value at some times (a linkage that does not assemble there): NaN
+  // marks those times, and is the one non-finite value allowed (inf still is an Error).
+  void write_history_where_defined(const std::string& name, const std::string& units,
+                                   const Eigen::Ref<const FieldMatrix>& values,
+                                   const std::vector<std::string>& component_names = {});
 
   // A table of any size (rows x c) at /tables/<name>, e.g. a history on its own time grid
   // (its time is another table) or a few scalars. Not in the XDMF file.
   // Error naming the table for a bad name, a second table of that name, no columns, or a
-  // count of component names other than c. Values may be non-finite (a settling time of +inf).
+  // count of component names other than c. Values may be +inf (a settling time that never comes),
+  // never NaN or -inf.
   void write_table(const std::string& name, const std::string& units,
                    const Eigen::Ref<const FieldMatrix>& values,
                    const std::vector<std::string>& component_names = {});
@@ -177,6 +189,10 @@ class ResultsWriter {
   bool committed() const;
 
  private:
+  void write_history(const std::string& name, const std::string& units,
+                     const Eigen::Ref<const FieldMatrix>& values,
+                     const std::vector<std::string>& component_names, bool nan_where_undefined);
+
   std::unique_ptr<detail::FileState> file_;
   std::vector<std::unique_ptr<BodyWriter>> bodies_;
 };
