@@ -23,7 +23,8 @@ std::string_view arm_geometry_text();
 // also when meshing throws and when the program is ended by SIGINT, SIGTERM
 // or SIGHUP (core/termination_cleanup.hpp). The mesh cache key (MeshOptions::cache_dir) is
 // the file name's stem and a hash of the text, so it is that of the file
-// itself; messages name the temporary path.
+// itself; messages name "built-in geometry <file_name>", never the
+// temporary path.
 fem::Mesh mesh_geometry_text(std::string_view file_name, std::string_view text,
                              const MeshOptions& options, const GeometryParameters& parameters = {});
 
