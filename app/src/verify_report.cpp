@@ -152,7 +152,9 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
     out.close();
     require(bool(out), "cannot write {}", tmp.string());
   }
-  std::filesystem::rename(tmp, path);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  require(!ec, "cannot write {}: {}", path.string(), ec.message());
 }
 
 }  // namespace
@@ -271,7 +273,10 @@ std::string report_html(const VerificationReport& r) {
 }
 
 int run_verify(const VerifyOptions& options, const std::vector<Check>& checks) {
-  std::filesystem::create_directories(options.output_dir);
+  // Before the checks run: a folder that cannot be made is the user's error, named.
+  std::error_code ec;
+  std::filesystem::create_directories(options.output_dir, ec);
+  require(!ec, "{}: cannot create the output directory: {}", options.output_dir.string(), ec.message());
   const VerificationReport report = run_checks(checks, options);
   const std::string md = report_markdown(report);
   write_file(options.output_dir / "verification_report.md", md);
