@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -41,6 +42,14 @@ int main(int argc, char** argv) {
     return app.exit(error);
   } catch (const kinetofem::Error& error) {
     std::fprintf(stderr, "kinetofem: error: %s\n", error.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // A stage that knows its part names it (driver/motion_to_stress.cpp); this is the rest.
+    const kinetofem::MemoryBudget left = kinetofem::memory_available_to_process();
+    std::fprintf(stderr,
+                 "kinetofem: error: out of memory: an allocation was refused (%.3g GB left by %s): coarsen the "
+                 "mesh, give fewer output times or raise the limit\n",
+                 left.bytes * 1e-9, left.limited_by.c_str());
     return 1;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "kinetofem: internal error: %s\n", error.what());

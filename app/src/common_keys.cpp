@@ -55,8 +55,10 @@ std::vector<KeySpec> solver_keys() {
               "graph, expanded to the DoFs; about 1.7-2x faster analysis than on the DoF graph), metis_dof "
               "(CHOLMOD's METIS on the DoF graph), amd, best (CHOLMOD's default: AMD, METIS if better)"},
       {.path = "solver.max_factor_gb", .type = Type::Number, .unit = "GB", .default_number = 0.0, .min = 0,
-       .doc = "memory allowed for a Cholesky factor; 0 = 80 % of physical memory. Above it: 'direct' stops with an "
-              "error before the numeric factorization, 'auto' switches to 'iterative'"},
+       .doc = "memory allowed for a Cholesky factor; 0 = 80 % of the memory left to the process (the least of the "
+              "physical memory, RLIMIT_AS and the cgroup limit) after the BLAS threads' buffers, which also caps a "
+              "larger value. Above it: 'direct' stops with an error before the numeric factorization, 'auto' "
+              "switches to 'iterative'"},
       {.path = "solver.concurrent_parts", .type = Type::Integer,
        .default_number = double(fem::StaticSolverOptions{}.concurrent_parts), .min = 0, .max = 1024,
        .doc = "parts whose Cholesky factorizations run side by side, one BLAS thread each, when their predicted "

@@ -1,9 +1,11 @@
 #include "kinetofem/driver/motion_to_stress.hpp"
 
 #include <memory>
+#include <new>
 #include <optional>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::driver {
@@ -19,6 +21,11 @@ auto in_stage(const MotionStressCase& c, const char* what, Stage&& stage) {
     return stage();
   } catch (const Error& e) {
     fail("{}: {}: {}", c.label, what, e.what());
+  } catch (const std::bad_alloc&) {
+    const MemoryBudget left = memory_available_to_process();
+    fail("{}: {}: out of memory: an allocation was refused ({:.3g} GB left by {}): coarsen the mesh, give fewer "
+         "output times or raise the limit",
+         c.label, what, left.bytes * 1e-9, left.limited_by);
   }
 }
 
@@ -125,10 +132,23 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
   std::vector<PartStressHistory> histories(c.fatigue ? parts.size() : 0);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     in_stage(c, "the stress of the parts cannot be computed or written", [&] {
-      factorized[k]->analysis().factorize();  // done already when the parts went side by side
-      run.parts.push_back(analyse_part_over_motion(parts[k], run.model, run.motion.frames, run.static_pose, writer,
-                                                   c.stress, log, factorized[k].get(),
-                                                   c.fatigue ? &histories[k] : nullptr));
+      try {
+        factorized[k]->analysis().factorize();  // done already when the parts went side by side
+        run.parts.push_back(analyse_part_over_motion(parts[k], run.model, run.motion.frames, run.static_pose, writer,
+                                                     c.stress, log, factorized[k].get(),
+                                                     c.fatigue ? &histories[k] : nullptr));
+      } catch (const std::bad_alloc&) {
+        // What the part needed: its factor (when direct) and a stress field per output time in blocks.
+        const fem::LinearStaticAnalysis& a = factorized[k]->analysis();
+        const std::string solver = a.uses_iterative_solver()
+                                       ? std::string("iterative solver")
+                                       : fmt::format("factor {:.3g} GB", a.solver_statistics().factor_bytes * 1e-9);
+        const MemoryBudget left = memory_available_to_process();
+        fail("part '{}' ({} nodes, {} output times, {}): out of memory: an allocation was refused "
+             "({:.3g} GB left by {}): coarsen the mesh, give fewer output times or raise the limit",
+             parts[k].body(), parts[k].model.mesh.node_count(), run.motion.frames.size(), solver, left.bytes * 1e-9,
+             left.limited_by);
+      }
       return 0;
     });
     if (assembly)

@@ -8,14 +8,40 @@
 #include <cholmod.h>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/process_memory.hpp"
+#include "kinetofem/solver/blas_threads.hpp"
 
 namespace kinetofem::fem {
 
 namespace {
 
-double physical_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? double(pages) * double(page) : 8e9;
+// The share of the memory left to the process that a factor may take by default.
+constexpr double kFactorShareOfMemory = 0.8;
+
+// OpenBLAS maps a work buffer per thread when a thread first runs a level-3
+// kernel (64 MiB in the x86-64 builds; its BUFFER_SIZE) and, when the mapping
+// is refused, retries forever: the factorization would hang instead of
+// failing. That memory is kept out of the factor's share.
+constexpr double kBlasBufferBytesPerThread = double(std::size_t(64) << 20);
+
+double blas_buffers_bytes() { return kBlasBufferBytesPerThread * std::max(1, BlasThreadLimit::threads()); }
+
+// The memory a factor may take by default: a share of what is left after the BLAS buffers.
+double factor_share_bytes(const MemoryBudget& budget) {
+  return kFactorShareOfMemory * std::max(0.0, budget.bytes - blas_buffers_bytes());
+}
+
+// Why the factor limit is what it is, for the error message.
+std::string factor_limit_reason(const CholmodOptions& options) {
+  const MemoryBudget budget = memory_available_to_process();
+  const double share = factor_share_bytes(budget);
+  if (options.max_factor_bytes > 0 && options.max_factor_bytes <= share) return "solver.max_factor_gb";
+  // e.g. "80 % of the 0.0774 GB left by the address-space limit (RLIMIT_AS, ulimit -v) of 0.461 GB, 0.384 GB
+  // of it mapped, less 0.134 GB for 2 BLAS threads' buffers"
+  return fmt::format("80 % of the {:.3g} GB left by {}, less {:.3g} GB for {} BLAS threads' buffers{}",
+                     budget.bytes * 1e-9, budget.limited_by, blas_buffers_bytes() * 1e-9,
+                     std::max(1, BlasThreadLimit::threads()),
+                     options.max_factor_bytes > 0 ? "; below solver.max_factor_gb" : "");
 }
 
 const char* status_text(int status) {
@@ -47,7 +73,10 @@ const char* ordering_name(int ordering) {
 }  // namespace
 
 double factor_memory_limit_bytes(const CholmodOptions& options) {
-  return options.max_factor_bytes > 0 ? options.max_factor_bytes : 0.8 * physical_memory_bytes();
+  // Never more than the process can get: an allocation past RLIMIT_AS or the
+  // cgroup limit is refused (or the process killed) in the middle of the factorization.
+  const double share = factor_share_bytes(memory_available_to_process());
+  return options.max_factor_bytes > 0 ? std::min(options.max_factor_bytes, share) : share;
 }
 
 struct CholmodSolver::Impl {
@@ -186,8 +215,8 @@ void CholmodSolver::analyze_with(const SymmetricUpperMatrix& matrix, const Given
   if (stats_.factor_bytes > limit)
     // {:.3g}: a small limit (0.001 GB) must not print as "0.0 GB".
     fail("the Cholesky factor of this {}-equation system needs {:.3g} GB (symbolic analysis, "
-         "{} ordering), more than the {:.3g} GB allowed: coarsen the mesh or raise the limit",
-         stats_.equations, stats_.factor_bytes * 1e-9, stats_.ordering, limit * 1e-9);
+         "{} ordering), more than the {:.3g} GB allowed: coarsen the mesh or raise the limit (the limit: {})",
+         stats_.equations, stats_.factor_bytes * 1e-9, stats_.ordering, limit * 1e-9, factor_limit_reason(options_));
   if (log_)
     log_->info("  CHOLMOD analyze: {} equations, nnz(K) {} (upper), nnz(L) {:.4g}, {:.4g} flops, "
                "factor {:.2f} GB, {} ordering, {:.2f} s",

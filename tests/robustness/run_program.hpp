@@ -2,7 +2,8 @@
 // Starts the built `kinetofem` program as a child process for the robustness
 // tests: its own working directory, stdout and stderr captured to files, an
 // optional file-size limit (RLIMIT_FSIZE: a write past it fails with EFBIG,
-// or kills with SIGXFSZ a program that does not ignore that signal), and a
+// or kills with SIGXFSZ a program that does not ignore that signal), an
+// optional address-space limit (RLIMIT_AS, as `ulimit -v`), and a
 // wall-clock limit after which it is killed (a hang is a failure, not a
 // stuck test). POSIX only (fork/exec), like the program's targets.
 #include <fcntl.h>
@@ -52,6 +53,7 @@ struct ProgramOptions {
   std::filesystem::path working_dir;
   std::filesystem::path capture_dir;  // receives stdout.txt, stderr.txt
   std::optional<long long> file_size_limit_bytes;
+  std::optional<long long> address_space_limit_bytes;  // RLIMIT_AS (ulimit -v)
 };
 
 // A started child. wait() or kill_and_wait() reaps it.
@@ -82,6 +84,10 @@ class Program {
       if (options.file_size_limit_bytes) {
         const rlimit limit{rlim_t(*options.file_size_limit_bytes), rlim_t(*options.file_size_limit_bytes)};
         ::setrlimit(RLIMIT_FSIZE, &limit);
+      }
+      if (options.address_space_limit_bytes) {
+        const rlimit limit{rlim_t(*options.address_space_limit_bytes), rlim_t(*options.address_space_limit_bytes)};
+        ::setrlimit(RLIMIT_AS, &limit);
       }
       ::execv(argv[0], argv.data());
       ::_exit(127);
