@@ -1,4 +1,9 @@
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -98,6 +103,22 @@ RunSummary summary_of(const LinkageRun& r) {
   return s;
 }
 
+// The output folder exists (it is made) and a file can be created in it,
+// checked before any work: a folder that cannot be written must not be found
+// only when the results are written after a long solve. A probe file is
+// created and removed, since access() says yes to root on a read-only mount.
+void require_writable_output_folder(const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  require(!ec, "{}: cannot create the output directory: {}", folder.string(), ec.message());
+  const std::filesystem::path probe = folder / fmt::format(".kinetofem-write-probe-{}", long(::getpid()));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  require(fd >= 0, "output folder '{}' cannot be written: {} (checked before any work; -o sets another)",
+          folder.string(), std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 // +inf in a summary value means "never" only for a fatigue life (no damage) and a settling time.
 bool summary_may_be_infinite(const std::string& key) {
   return key.starts_with("fatigue_min_life_") || key.starts_with("fatigue_life_") ||
@@ -179,6 +200,7 @@ int run_case(const RunOptions& options) {
   const CaseType& type = case_type_named(any.text_value("case.type"), options.case_path.string() + ": ");
   const CaseFile c = CaseFile::load(options.case_path, type.schema(), /*allow_unknown=*/false, options.overrides);
   case_name(c);  // a name that cannot be a file name is refused before any work
+  require_writable_output_folder(options.output_dir);
   Stopwatch clock;
   RunSummary summary = type.run(c, options);
   // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml, for every case type.
