@@ -1,7 +1,8 @@
 // Diagnoses of the multibody core when a run cannot go on: a SUNDIALS failure
 // is named by its flag's name and plain meaning (never a bare number) with the
 // time; a singular acceleration system names its real cause, and a body far
-// heavier than the others (1e300 kg) is no cause at all.
+// heavier than the others (1e300 kg) is no cause at all; a prescribed motion
+// too large to follow in substeps is an error.
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -109,6 +110,24 @@ TEST(MultibodyDiagnostics, RedundantConstraintIsNotCalledMassless) {
   EXPECT_NE(what.find("redundant"), std::string::npos) << what;
   EXPECT_EQ(what.find("massless"), std::string::npos) << what;
   EXPECT_EQ(what.find("no mass"), std::string::npos) << what;
+}
+
+TEST(MultibodyDiagnostics, MotionTooLargeToFollowIsAnErrorNotAnEndlessRun) {
+  // The pendulum turned 100 times in 1 s with two output times: followed in
+  // substeps of at most 0.1 rad, some 12 600 of them.
+  MultibodyModel m = pendulum(2.0, 2.0 / 12.0);
+  MotionDrive spin;
+  spin.name = "spin";
+  spin.coordinate = {CoordinateType::Angle, "ground", "origin", "bar", "origin", {1, 0}};
+  spin.law = std::make_shared<ConstantVelocityLaw>(200.0 * std::numbers::pi);
+  m.motion_drives.push_back(spin);
+  const MultibodySystem sys(m);
+  const Results res = run_kinematics(sys, {0.0, 1.0});
+  EXPECT_NEAR(res.frames.back().bodies[1].q.z(), -0.25 * std::numbers::pi + 200.0 * std::numbers::pi, 1e-9);
+  KinematicOptions budget;
+  budget.max_substeps = 1000;
+  const std::string what = message_of([&] { run_kinematics(sys, {0.0, 1.0}, budget); });
+  EXPECT_NE(what.find("the motion is too large to follow: more than 1002 substeps"), std::string::npos) << what;
 }
 
 }  // namespace

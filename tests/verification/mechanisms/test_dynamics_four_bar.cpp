@@ -9,6 +9,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -118,6 +119,25 @@ TEST(DynamicsFourBar, NonGrashofLimitStopsTheRunWithTime) {
     std::printf("four-bar limit: %s\n", what.c_str());
     EXPECT_TRUE(what.find("singular position at t = ") != std::string::npos ||
                 what.find("cannot be assembled at t = ") != std::string::npos)
+        << what;
+  }
+}
+
+TEST(DynamicsFourBar, LimitPassedBetweenTwoOutputTimesIsFound) {
+  // The lever goes out 40 deg (past the limit of assembly at 36.4 deg) and back
+  // between the only two output times, both at 0 deg: the poses at the output
+  // times assemble, the motion between them does not exist.
+  const auto out_and_back =
+      std::make_shared<TabulatedLaw>(std::vector<double>{0.0, 1.0, 2.0}, std::vector<double>{0.0, 40.0 * kDeg, 0.0});
+  const MultibodySystem sys(four_bar(out_and_back, {0, -9.81}));
+  try {
+    run_kinematics(sys, {0.0, 2.0});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    std::printf("four-bar limit between two output times: %s\n", what.c_str());
+    EXPECT_TRUE(what.find("singular position at t = 0.") != std::string::npos ||
+                what.find("cannot be followed from t = 0 s to t = 2 s") != std::string::npos)
         << what;
   }
 }

@@ -31,9 +31,10 @@ struct KinematicOptions {
   // following the motion (rad for angles; for positions, a fraction of the
   // characteristic length): keeps Newton on the assembly branch it started on.
   double max_substep = 0.1;
-  // Most substeps of one run: a motion law far beyond any mechanism (1e12 deg/s)
-  // is an error, not an endless run.
-  long max_substeps = 1000000;
+  // Most substeps of one run besides one per output interval (a substep aims
+  // at half of max_substep: 100 000 follow some 800 crank turns): a motion far
+  // beyond any mechanism's (1e7 deg/s for 1 s) is an error, not an endless run.
+  long max_substeps = 100000;
 };
 
 Eigen::VectorXd assemble(const MultibodySystem& system, Eigen::VectorXd q_guess, double t,
