@@ -1,11 +1,13 @@
 #include "kinetofem/driver/motion_to_stress.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <new>
 #include <optional>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/process_memory.hpp"
+#include "kinetofem/postproc/results_size.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::driver {
@@ -60,6 +62,21 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
   in_stage(c, "a part does not fit the linkage", [&] {
     apply_mass_properties(run.model, parts, log);
     for (const auto& part : parts) check_part_against_model(part, run.model);
+    return 0;
+  });
+  in_stage(c, "the results would not fit the disk", [&] {  // before the motion and the solves
+    // Per written output time and node: each part's displacement and von Mises (4 values) and,
+    // with the elastic assembly, its position, displacement, magnitude and von Mises (8).
+    const auto& mask = c.stress.callback_steps;
+    const std::int64_t written = std::int64_t(mask.empty() ? c.times.size() : std::count(mask.begin(), mask.end(), true)) +
+                                 (c.static_pose ? 1 : 0);
+    const int per_node = 4 + (c.assembly ? 8 : 0);
+    std::int64_t nodes = 0;
+    for (const auto& part : parts) nodes += part.model.mesh.node_count();
+    post::require_free_space(c.results_file.parent_path(), post::series_bytes(nodes, per_node, written),
+                             fmt::format("the results file '{}'", c.results_file.string()),
+                             fmt::format("{} field output times x {} nodes x {} values x 8 bytes", written, nodes,
+                                         per_node));
     return 0;
   });
   if (c.fatigue)
