@@ -93,8 +93,9 @@ int child_threads(int jobs) {
 }
 
 // Starts `kinetofem run` for one run, its output into DIR/<name>.log.
-pid_t spawn_run(const fs::path& exe, const BatchRun& run, const fs::path& dir, int threads) {
+pid_t spawn_run(const fs::path& exe, const BatchRun& run, const fs::path& dir, int threads, bool trust_part_files) {
   std::vector<std::string> args = {exe.string(), "run", run.case_path.string(), "-o", dir.string()};
+  if (trust_part_files) args.push_back("--trust-part-files");
   for (const auto& o : run.overrides) {
     args.push_back("--set");
     args.push_back(o);
@@ -230,7 +231,7 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
       fs::remove(hash_path(dir, run.name), ec);
       fs::remove(run_summary_path(dir, run.name), ec);
       try {
-        const pid_t pid = spawn_run(exe, run, dir, threads);
+        const pid_t pid = spawn_run(exe, run, dir, threads, options.trust_part_files);
         running.emplace(pid, Running{index, Stopwatch(), core::KillOnTermination(pid)});
       } catch (const Error& e) {
         outcomes[index] = {RunStatus::Failed, 0.0, e.what()};

@@ -103,6 +103,9 @@ void add_batch_command(CLI::App& app, CommandContext& context) {
                     "Override a case key in every run: KEY=VALUE, the value in TOML (20, \"hex\", [0, 1, 0]); "
                     "repeatable")
       ->allow_extra_args(false);
+  batch->add_flag("--trust-part-files", options->trust_part_files,
+                  "Start every run with --trust-part-files: their .geo part files may run programs, exit, write "
+                  "files and read outside the case folder (a trust decision; docs/robustness.md)");
   batch->add_flag("--force", options->force, "Rerun every run, also those up to date");
   batch->add_flag("-q,--quiet", options->quiet, "No progress lines and no table on the terminal (the table is still written)");
   batch->callback([options, &context] {

@@ -379,6 +379,28 @@ TEST(Batch, JobsOutsideTheirRangeAreClear) {
       << r.output;
 }
 
+// The trust decision reaches every run: a part .geo that calls Exit is refused
+// by the scan without it, and reaches Gmsh (which the meshing process reports
+// as the file ending Gmsh) with it.
+TEST(Batch, TrustPartFilesIsPassedToEveryRun) {
+  const TempDir temp("trust");
+  const fs::path& dir = temp.path;
+  fs::copy("tests/data/robustness/131_part_geo_exit", dir / "exit");
+  const std::string args = fmt::format("batch {} -o {}", (dir / "exit" / "case.toml").string(), (dir / "out").string());
+
+  Command r = kinetofem(args, dir);
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_EQ(statuses(dir / "out")["r"], "failed") << r.output;
+  EXPECT_NE(read_text(dir / "out" / "batch_summary.csv").find("'Exit' ends the program"), std::string::npos)
+      << read_text(dir / "out" / "batch_summary.csv");
+
+  r = kinetofem(args + " --trust-part-files", dir);
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  const std::string csv = read_text(dir / "out" / "batch_summary.csv");
+  EXPECT_EQ(csv.find("'Exit' ends the program"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("the file ended Gmsh"), std::string::npos) << csv;
+}
+
 TEST(Batch, MpiTwoRanksRunEveryCaseExactlyOnce) {
   if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
   const TempDir temp("mpi");
