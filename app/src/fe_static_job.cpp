@@ -111,6 +111,9 @@ fem::Mesh build_mesh(const CaseFile& c, const Log& log, bool trust_geometry_file
     require(c.has("geometry.file"), "{} is required when geometry.kind = \"file\"",
             c.where("geometry.file"));
     const auto file = c.path().parent_path() / c.text_value("geometry.file");
+    // A missing file is the mesh reader's error; a FIFO would block it forever.
+    if (const std::string problem = input_file_problem(file); !problem.empty() && problem != "no such file")
+      fail("{} = \"{}\": {} ({})", c.where("geometry.file"), c.text_value("geometry.file"), problem, file.string());
     if (file.extension() == ".msh") {
       log.info("reading mesh {}", file.string());
       mesh = meshes::read_msh(file);
@@ -125,9 +128,6 @@ fem::Mesh build_mesh(const CaseFile& c, const Log& log, bool trust_geometry_file
         meshes::scan_geo_file(file, policy);
       }
       mesh = meshes::mesh_geometry(file, options);
-    // A missing file is the mesh reader's error; a FIFO would block it forever.
-    if (const std::string problem = input_file_problem(file); !problem.empty() && problem != "no such file")
-      fail("{} = \"{}\": {} ({})", c.where("geometry.file"), c.text_value("geometry.file"), problem, file.string());
     }
   }
   log.info("  mesh: {} nodes, {} elements ({}), {:.2f} s", mesh.node_count(),
