@@ -30,6 +30,37 @@ class RampLaw final : public mech::MotionLaw {
   std::shared_ptr<const mech::MotionLaw> rise_;
 };
 
+// The motion by the chosen method, unchecked.
+mech::Results run_motion(const mech::MultibodySystem& system, const std::vector<double>& times,
+                         const DynamicsSettings& settings) {
+  const int dof = degrees_of_freedom(system);
+  switch (settings.method) {
+    case DynamicsMethod::Kinematic: {
+      require(dof == 0,
+              "the kinematic method needs a fully driven linkage (0 DoF); this one has {} DoF: add motion drives or "
+              "use IDAS",
+              dof);
+      mech::KinematicOptions ko;
+      ko.slack_is_error = settings.options.slack_is_error;
+      return mech::run_kinematics(system, times, ko);
+    }
+    case DynamicsMethod::Cvodes: {
+      require(dof == 1, "the CVODES method needs a linkage with 1 DoF; this one has {} DoF", dof);
+      mech::RelativeCoordinate rc;
+      if (settings.cvodes_coordinate) {
+        rc = *settings.cvodes_coordinate;
+      } else {
+        require(!system.model().force_drives.empty(),
+                "the CVODES method needs an independent coordinate (none given and no force drive to take it from)");
+        rc = system.model().force_drives.front().coordinate;
+      }
+      return mech::simulate_minimal(system, rc, times, settings.options);
+    }
+    case DynamicsMethod::Idas: break;
+  }
+  return mech::simulate_ggl(system, times, settings.options);
+}
+
 }  // namespace
 
 int degrees_of_freedom(const mech::MultibodySystem& system) {
@@ -57,34 +88,27 @@ void check_motion_before_meshing(const mech::MultibodyModel& model, const std::v
   mech::run_kinematics(system, times, check);
 }
 
+void require_accurate_motion(const mech::Results& results, const mech::DynamicsOptions& options) {
+  const mech::RunSummary& s = results.summary;
+  const std::string tolerances = fmt::format(
+      "at relative tolerance {:g} and absolute tolerance {:g}: tighten them (simulation.relative_tolerance, "
+      "simulation.absolute_tolerance)",
+      options.relative_tolerance, options.absolute_tolerance);
+  if (!(s.max_drift_relative <= kMaxRelativeConstraintDrift))
+    fail("the motion ({}) is not accurate enough to use: its joints drift apart by {:.3g} of the characteristic "
+         "length ({:.3g} m), more than the {:g} accepted, {}",
+         s.method, s.max_drift_relative, s.max_drift_position_m, kMaxRelativeConstraintDrift, tolerances);
+  if (!(s.energy_balance_error <= kMaxEnergyBalanceError))
+    fail("the motion ({}) is not accurate enough to use: its energy balance |dT + dV - W| is off by {:.3g} of the "
+         "energy scale, more than the {:g} accepted, {}",
+         s.method, s.energy_balance_error, kMaxEnergyBalanceError, tolerances);
+}
+
 mech::Results run_dynamics(const mech::MultibodySystem& system, const std::vector<double>& times,
                            const DynamicsSettings& settings) {
-  const int dof = degrees_of_freedom(system);
-  switch (settings.method) {
-    case DynamicsMethod::Kinematic: {
-      require(dof == 0,
-              "the kinematic method needs a fully driven linkage (0 DoF); this one has {} DoF: add motion drives or "
-              "use IDAS",
-              dof);
-      mech::KinematicOptions ko;
-      ko.slack_is_error = settings.options.slack_is_error;
-      return mech::run_kinematics(system, times, ko);
-    }
-    case DynamicsMethod::Cvodes: {
-      require(dof == 1, "the CVODES method needs a linkage with 1 DoF; this one has {} DoF", dof);
-      mech::RelativeCoordinate rc;
-      if (settings.cvodes_coordinate) {
-        rc = *settings.cvodes_coordinate;
-      } else {
-        require(!system.model().force_drives.empty(),
-                "the CVODES method needs an independent coordinate (none given and no force drive to take it from)");
-        rc = system.model().force_drives.front().coordinate;
-      }
-      return mech::simulate_minimal(system, rc, times, settings.options);
-    }
-    case DynamicsMethod::Idas: break;
-  }
-  return mech::simulate_ggl(system, times, settings.options);
+  mech::Results results = run_motion(system, times, settings);
+  require_accurate_motion(results, settings.options);
+  return results;
 }
 
 mech::Frame solve_static_pose(const mech::MultibodyModel& model, const std::vector<double>& law_values) {

@@ -247,5 +247,34 @@ TEST(SolveStaticPose, NeedsAFullyDrivenLinkage) {
   EXPECT_TRUE(contains(message, "the static pose study needs a fully driven linkage")) << message;
 }
 
+// A motion whose own checks fail is not used: the limits of motion_stages.hpp
+// on the drift and the energy balance, a NaN as a failure, values at the
+// limit accepted.
+TEST(RequireAccurateMotion, DriftOrEnergyBalanceAboveTheirLimitsOrNotFiniteAreErrors) {
+  mech::Results results;
+  results.summary.method = "IDAS GGL index-2";
+  mech::DynamicsOptions options;
+  options.relative_tolerance = 1e-3;
+  options.absolute_tolerance = 1e-4;
+  results.summary.max_drift_relative = kMaxRelativeConstraintDrift;
+  results.summary.energy_balance_error = kMaxEnergyBalanceError;
+  EXPECT_EQ(error_of([&] { require_accurate_motion(results, options); }), "(no error)");
+
+  results.summary.energy_balance_error = 0.5;
+  const std::string energy = error_of([&] { require_accurate_motion(results, options); });
+  EXPECT_NE(energy.find("energy balance |dT + dV - W| is off by 0.5 of the energy scale, more than the 0.01 "
+                        "accepted, at relative tolerance 0.001 and absolute tolerance 0.0001"),
+            std::string::npos)
+      << energy;
+
+  results.summary.energy_balance_error = std::nan("");
+  EXPECT_NE(error_of([&] { require_accurate_motion(results, options); }).find("energy balance"), std::string::npos);
+
+  results.summary.energy_balance_error = 0.0;
+  results.summary.max_drift_relative = 2e-4;
+  const std::string drift = error_of([&] { require_accurate_motion(results, options); });
+  EXPECT_NE(drift.find("joints drift apart by 0.0002 of the characteristic length"), std::string::npos) << drift;
+}
+
 }  // namespace
 }  // namespace kinetofem::pipeline

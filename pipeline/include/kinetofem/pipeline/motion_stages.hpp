@@ -9,7 +9,8 @@
 //       drive past its range stops the run here with its time; a linkage
 //       with free DoFs is assembled at t = 0 (its motion needs the masses).
 //   run_dynamics — the motion with the real mass properties: IDAS (any DoF),
-//       CVODES (1 DoF, minimal coordinate) or kinematic (DoF 0).
+//       CVODES (1 DoF, minimal coordinate) or kinematic (DoF 0); its result
+//       is used only if its own checks hold (require_accurate_motion).
 //   solve_static_pose — the linkage at rest in a pose: each motion drive's
 //       law value ramped from law(0) to the target by a 3-4-5 rise over 1 s
 //       (continuation: Newton from the initial pose alone diverges far from
@@ -47,6 +48,20 @@ int degrees_of_freedom(const mech::MultibodySystem& system);
 
 mech::Results run_dynamics(const mech::MultibodySystem& system, const std::vector<double>& times,
                            const DynamicsSettings& settings);
+
+// The largest errors of a motion whose loads are still used: the position
+// constraint drift relative to the model's characteristic length, and the
+// energy balance |dT + dV - W| relative to the energy scale (docs/multibody.md,
+// "Checks of a run"). At the default tolerances both are below 1e-8; at the
+// loosest allowed (relative 1e-2, absolute 1) the bundled slider-crank drifts
+// 3.5e-2 and its energy balance is off by 97 %: poses and loads would be wrong.
+inline constexpr double kMaxRelativeConstraintDrift = 1e-4;
+inline constexpr double kMaxEnergyBalanceError = 1e-2;
+
+// Throws Error, naming the check, its value, the limit and the tolerances to
+// tighten, when the run's constraint drift or energy balance (where the method
+// computes it) is above those limits or not finite. run_dynamics calls it.
+void require_accurate_motion(const mech::Results& results, const mech::DynamicsOptions& options);
 
 // law_values[d]: the target value of motion drive d's law (rad or m; the
 // drive holds s_0 + law_value). Needs a fully driven linkage. Throws Error if
