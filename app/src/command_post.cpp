@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/commands.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/postproc/csv_export.hpp"
@@ -364,8 +365,9 @@ void write_assembly_pictures(const post::ResultsFile& r, const post::AssemblyCon
 }
 
 int run_post(const PostOptions& o) {
-  require(fs::exists(o.results), "{}: no such results file", o.results.string());
-  require(fs::is_regular_file(o.results), "{}: not a file", o.results.string());
+  if (const std::string problem = input_file_problem(o.results); !problem.empty())
+    fail("{}: {}, expected a results file (RESULT.h5)", o.results.string(),
+         problem == "no such file" ? "no such results file" : problem);
   require(o.hot_spots >= 0, "--hot-spots {}: must be 0 or more", o.hot_spots);
   require(o.separation_mm >= 0, "--separation-mm {}: must be 0 or more", o.separation_mm);
   const auto [width_px, height_px] = parse_image_size(o.image_size);

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "kinetofem/app/commands.hpp"
 #include "kinetofem/core/error.hpp"
@@ -84,6 +85,11 @@ TEST(PostCli, ErrorsAreOneLineAndNameTheCulprit) {
   testing::TemporaryDirectory dir;
   const std::string file = testing::write_synthetic_motion(dir.path()).string();
   EXPECT_NE(error_of({(dir / "nope.h5").string()}).find("nope.h5: no such results file"), std::string::npos);
+  // A folder or a FIFO is said to be one (a FIFO is never opened: that would wait for a writer).
+  EXPECT_NE(error_of({dir.path().string()}).find(": is a directory, expected a results file"), std::string::npos);
+  const std::filesystem::path fifo = dir / "fifo.h5";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(error_of({fifo.string()}).find("fifo.h5: is not a regular file (a FIFO)"), std::string::npos);
   EXPECT_NE(error_of({file, "--history", "3", "--body", "shaft"}).find("--body 'shaft'"), std::string::npos);
   EXPECT_NE(error_of({file, "--history", "3", "--body", "beam", "--field", "tresca"})
                 .find("no series field 'tresca'"),
