@@ -1,8 +1,11 @@
 // Run summaries (<name>.summary.toml) and the batch summary table.
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -40,14 +43,29 @@ std::string number_or_blank(const std::optional<double>& value, double unit, con
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
   const std::filesystem::path temporary =
       file.string() + fmt::format(".tmp{}", static_cast<long>(::getpid()));
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail("{}: cannot write", temporary.string());
-    out << text;
-    out.flush();
-    if (!out) fail("{}: write failed", temporary.string());
-  }
+  // A stale entry at the temporary name (a symbolic link above all) is removed,
+  // never written through; O_EXCL | O_NOFOLLOW refuse one made in between.
   std::error_code ec;
+  std::filesystem::remove(temporary, ec);
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) fail("{}: cannot write ({}: {})", file.string(), temporary.filename().string(), std::strerror(errno));
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ::ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = errno;
+      ::close(fd);
+      std::filesystem::remove(temporary, ec);
+      fail("{}: write failed: {}", file.string(), std::strerror(error));
+    }
+    written += std::size_t(n);
+  }
+  if (::close(fd) != 0) {
+    const int error = errno;
+    std::filesystem::remove(temporary, ec);
+    fail("{}: write failed: {}", file.string(), std::strerror(error));
+  }
   std::filesystem::rename(temporary, file, ec);
   if (ec) {
     std::filesystem::remove(temporary, ec);

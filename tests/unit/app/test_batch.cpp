@@ -379,6 +379,21 @@ TEST(Batch, JobsOutsideTheirRangeAreClear) {
       << r.output;
 }
 
+// A stale temporary that is a symbolic link (left, or planted, at the name the
+// writer uses) is replaced, never written through: its target is unchanged.
+TEST(Batch, AtomicWriteNeverFollowsASymlinkAtItsTemporaryName) {
+  const TempDir temp("symlink");
+  const fs::path file = temp.path / "batch_summary.csv", target = temp.path / "precious.txt";
+  std::ofstream(target) << "keep me";
+  const fs::path temporary = file.string() + fmt::format(".tmp{}", static_cast<long>(::getpid()));
+  fs::create_symlink(target, temporary);
+  write_file_atomically(file, "case,status\n");
+  EXPECT_EQ(read_text(target), "keep me");
+  EXPECT_FALSE(fs::is_symlink(file));
+  EXPECT_EQ(read_text(file), "case,status\n");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(temporary)));
+}
+
 // The trust decision reaches every run: a part .geo that calls Exit is refused
 // by the scan without it, and reaches Gmsh (which the meshing process reports
 // as the file ending Gmsh) with it.
