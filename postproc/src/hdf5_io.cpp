@@ -19,6 +19,21 @@ herr_t keep_innermost(unsigned n, const H5E_error2_t* error, void* client) {
   return 0;
 }
 
+// HDF5's file driver describes a failed system call as "file write failed:
+// time = ..., filename = ..., file descriptor = 3, errno = 27, error message =
+// 'File too large', buf = ..., offset = 0 (in H5FD__sec2_write)": a user needs
+// what failed and the system's reason, not the call's arguments.
+std::string condensed(const std::string& message) {
+  constexpr std::string_view reason_key = "error message = '";
+  const auto reason_at = message.find(reason_key);
+  const auto colon = message.find(": ");
+  if (reason_at == std::string::npos || colon == std::string::npos || colon > reason_at) return message;
+  const auto start = reason_at + reason_key.size();
+  const auto end = message.find('\'', start);
+  if (end == std::string::npos) return message;
+  return message.substr(0, colon) + ": " + message.substr(start, end - start);
+}
+
 }  // namespace
 
 void throw_failure(const char* function, std::string_view object, const std::string& file) {
@@ -29,7 +44,7 @@ void throw_failure(const char* function, std::string_view object, const std::str
   // One-line errors: HDF5's messages may carry newlines (e.g. a failed write).
   for (char& c : message)
     if (c == '\n' || c == '\r') c = ' ';
-  fail("HDF5 {} failed on '{}' in '{}': {}", function, object, file, message);
+  fail("HDF5 {} failed on '{}' in '{}': {}", function, object, file, condensed(message));
 }
 
 H5Io::H5Io(std::string file_path) : file_(std::move(file_path)) {

@@ -157,7 +157,7 @@ struct FileState {
         temporary_xdmf(final_xdmf.string() + ".tmp"),
         remove_h5_on_signal(temporary_h5),
         remove_xdmf_on_signal(temporary_xdmf),
-        io(temporary_h5.string()) {}
+        io(final_h5.string()) {}  // messages name the results file, not its temporary
 
   void check_writable() const {
     require(!committed, "results file '{}' is already committed; nothing more can be written",
