@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "run_program.hpp"
+#include "kinetofem/testing/scoped_tmpdir.hpp"
 
 namespace fs = std::filesystem;
 using kinetofem::test::Program;
@@ -26,21 +27,7 @@ namespace {
 
 const fs::path kData = ROBUSTNESS_DATA_DIR;
 
-// TMPDIR of the started program: set in this process, inherited by the child.
-class ScopedTmpdir {
- public:
-  explicit ScopedTmpdir(const fs::path& dir) {
-    if (const char* old = std::getenv("TMPDIR")) old_ = old;
-    ::setenv("TMPDIR", dir.c_str(), 1);
-  }
-  ~ScopedTmpdir() {
-    if (old_) ::setenv("TMPDIR", old_->c_str(), 1);
-    else ::unsetenv("TMPDIR");
-  }
-
- private:
-  std::optional<std::string> old_;
-};
+using kinetofem::testing::ScopedTmpdir;
 
 std::vector<std::string> entries(const fs::path& dir) {
   std::vector<std::string> names;

@@ -15,6 +15,7 @@
 #include "kinetofem/meshes/geometry_text.hpp"
 #include "kinetofem/verification/verification_geometry.hpp"
 #include "mesh_test_helpers.hpp"
+#include "kinetofem/testing/scoped_tmpdir.hpp"
 
 namespace kinetofem::meshes {
 namespace {
@@ -34,22 +35,7 @@ std::size_t entries(const fs::path& dir) {
   return std::size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
 
-// TMPDIR pointed at a fresh directory for the test's lifetime.
-class ScopedTmpdir {
- public:
-  explicit ScopedTmpdir(const fs::path& dir) : dir_(dir) {
-    if (const char* old = std::getenv("TMPDIR")) old_ = old;
-    ::setenv("TMPDIR", dir.c_str(), 1);
-  }
-  ~ScopedTmpdir() {
-    if (old_) ::setenv("TMPDIR", old_->c_str(), 1);
-    else ::unsetenv("TMPDIR");
-  }
-
- private:
-  fs::path dir_;
-  std::optional<std::string> old_;
-};
+using kinetofem::testing::ScopedTmpdir;
 
 MeshOptions coarse() {
   MeshOptions options;

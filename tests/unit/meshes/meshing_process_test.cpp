@@ -17,27 +17,14 @@
 #include "kinetofem/meshes/geometry_text.hpp"
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "mesh_test_helpers.hpp"
+#include "kinetofem/testing/scoped_tmpdir.hpp"
 
 namespace kinetofem::meshes {
 namespace {
 
 namespace fs = std::filesystem;
 
-// TMPDIR pointed at a directory for the test's lifetime.
-class ScopedTmpdir {
- public:
-  explicit ScopedTmpdir(const fs::path& dir) {
-    if (const char* old = std::getenv("TMPDIR")) old_ = old;
-    ::setenv("TMPDIR", dir.c_str(), 1);
-  }
-  ~ScopedTmpdir() {
-    if (old_) ::setenv("TMPDIR", old_->c_str(), 1);
-    else ::unsetenv("TMPDIR");
-  }
-
- private:
-  std::optional<std::string> old_;
-};
+using kinetofem::testing::ScopedTmpdir;
 
 bool folder_is_empty(const fs::path& dir) { return fs::directory_iterator(dir) == fs::directory_iterator(); }
 
