@@ -71,7 +71,8 @@ std::vector<std::unique_ptr<SupportedPart>> factorize_parts(const std::vector<Pa
     r.side_by_side = std::min(allowed, direct_parts);
 
   if (r.side_by_side < 2) {
-    log.info("factorization: one part after the other ({})", r.why);
+    // A linkage without FE parts has nothing to factorize: nothing to say.
+    if (!parts.empty()) log.info("factorization: one part after the other ({})", r.why);
   } else {
     r.why = fmt::format("{} parts, factors {:.3g} GB together within the {:.3g} GB limit", direct_parts,
                         r.predicted_factor_bytes * 1e-9, r.limit_bytes * 1e-9);

@@ -10,6 +10,7 @@
 
 #include "kinetofem/pipeline/part_factorization.hpp"
 #include "kinetofem/solver/blas_threads.hpp"
+#include "kinetofem/testing/captured_log.hpp"
 #include "pipeline_fixtures.hpp"
 
 namespace kinetofem::pipeline {
@@ -82,6 +83,15 @@ TEST(FactorizeParts, FactorsAboveTheLimitTogetherGoOneAfterTheOther) {
   EXPECT_EQ(report.side_by_side, 1);
   EXPECT_NE(report.why.find("exceed"), std::string::npos) << report.why;
   for (const auto& s : supported) EXPECT_FALSE(s->analysis().is_factorized());
+}
+
+// A linkage without FE parts reaches the stage with none: it prints nothing
+// (a "factorization" line there would tell a reader of parts that do not exist).
+TEST(FactorizeParts, NoPartsPrintNothing) {
+  const testing::CapturedLog log;
+  PartFactorizationReport report;
+  EXPECT_TRUE(factorize_parts({}, fem::StaticSolverOptions{}, log.log(), &report).empty());
+  EXPECT_EQ(log.text(), "");
 }
 
 TEST(FactorizeParts, SolvingBeforeADeferredFactorizationIsAnError) {
