@@ -9,6 +9,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -72,6 +73,11 @@ void write_all(int fd, const std::string& text) {
                             const std::function<fem::Mesh()>& work) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(kChildReportedError);  // the parent is already gone
+  // A crash inside Gmsh or OpenCASCADE must end this process by its signal, so
+  // that the parent can say so: a handler inherited from the parent (such as a
+  // sanitizer's, which would report the library's fault and exit with status 1)
+  // is reset to the default action.
+  for (const int crash : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(crash, SIG_DFL);
   std::string message;
   try {
     const fem::Mesh mesh = work();
