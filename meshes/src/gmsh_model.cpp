@@ -21,39 +21,18 @@ using fem::FaceType;
 using fem::Index;
 using Tags = std::vector<std::size_t>;
 
-constexpr std::array element_types = {ElementType::Tet4, ElementType::Tet10, ElementType::Hex8,
-                                      ElementType::Hex20};
-constexpr std::array face_types = {FaceType::Tri3, FaceType::Tri6, FaceType::Quad4,
-                                   FaceType::Quad8};
-
-// Gmsh element type numbers (Gmsh reference manual, "MSH file format").
-int gmsh_type_of(ElementType type) {
-  switch (type) {
-    case ElementType::Tet4: return 4;
-    case ElementType::Tet10: return 11;
-    case ElementType::Hex8: return 5;
-    case ElementType::Hex20: return 17;
-  }
-  return 0;
-}
-int gmsh_type_of(FaceType type) {
-  switch (type) {
-    case FaceType::Tri3: return 2;
-    case FaceType::Tri6: return 9;
-    case FaceType::Quad4: return 3;
-    case FaceType::Quad8: return 16;
-  }
-  return 0;
-}
+// Gmsh element type numbers are rows of the element table (element_traits.hpp).
+int gmsh_type_of(ElementType type) { return fem::element_facts(type).gmsh_code; }
+int gmsh_type_of(FaceType type) { return fem::face_facts(type).gmsh_code; }
 constexpr int gmsh_point_type = 15;
 
 std::optional<ElementType> element_type_of_gmsh(int gmsh_type) {
-  for (auto type : element_types)
+  for (auto type : fem::all_element_types)
     if (gmsh_type_of(type) == gmsh_type) return type;
   return std::nullopt;
 }
 std::optional<FaceType> face_type_of_gmsh(int gmsh_type) {
-  for (auto type : face_types)
+  for (auto type : fem::all_face_types)
     if (gmsh_type_of(type) == gmsh_type) return type;
   return std::nullopt;
 }
@@ -115,7 +94,7 @@ void find_owners(const fem::Mesh& mesh, std::unordered_map<FaceKey, FaceOwner, F
     const int faces = fem::faces_per_element(block.type);
     std::vector<std::vector<int>> local(faces);
     for (int f = 0; f < faces; ++f) local[f] = fem::element_face_nodes(block.type, f);
-    const int face_corners = fem::corner_nodes(block.type) == 4 ? 3 : 4;
+    const int face_corners = fem::face_facts(fem::face_type_of(block.type)).corners;
     std::array<Index, 4> corners{};
     for (Index e = 0; e < block.size(); ++e) {
       const auto element = block.element(e);
@@ -137,7 +116,9 @@ fem::Mesh mesh_from_model(GmshSession& session, const std::string& context) {
   gmsh::vectorpair volumes;
   session.call(context, "gmsh::model::getEntities",
                [&] { gmsh::model::getEntities(volumes, 3); });
-  std::array<std::vector<std::pair<std::size_t, std::vector<std::size_t>>>, 4> collected;
+  std::array<std::vector<std::pair<std::size_t, std::vector<std::size_t>>>,
+             fem::all_element_types.size()>
+      collected;
   for (const auto& [dim, tag] : volumes) {
     const auto elements = elements_of(session, context, 3, tag);
     for (std::size_t k = 0; k < elements.types.size(); ++k) {
@@ -191,7 +172,7 @@ fem::Mesh mesh_from_model(GmshSession& session, const std::string& context) {
   std::unordered_map<std::size_t, Index> global_of;  // Gmsh element tag -> global index
   global_of.reserve(element_total);
   Index global = 0;
-  for (auto type : element_types) {
+  for (auto type : fem::all_element_types) {
     auto& list = collected[std::size_t(type)];
     if (list.empty()) continue;
     std::sort(list.begin(), list.end(),
@@ -289,16 +270,13 @@ fem::Mesh mesh_from_model(GmshSession& session, const std::string& context) {
   std::unordered_map<FaceKey, FaceOwner, FaceKeyHash> owners;
   for (const auto& group : pending)
     for (const auto& [type, face] : group.faces)
-      owners.emplace(key_of({face.data(), std::size_t(type == FaceType::Tri3 ||
-                                                              type == FaceType::Tri6
-                                                          ? 3
-                                                          : 4)}),
+      owners.emplace(key_of({face.data(), std::size_t(fem::face_facts(type).corners)}),
                      FaceOwner{});
   find_owners(mesh, owners);
   for (const auto& group : pending) {
     std::map<FaceType, fem::FaceBlock> blocks;
     for (const auto& [type, face] : group.faces) {
-      const std::size_t corners = (type == FaceType::Tri3 || type == FaceType::Tri6) ? 3 : 4;
+      const auto corners = std::size_t(fem::face_facts(type).corners);
       const auto& owner = owners.at(key_of({face.data(), corners}));
       require(owner.block >= 0,
               "{}: a face of physical surface '{}' (nodes {}) is no face of any volume element",

@@ -263,10 +263,6 @@ double face_orientation(const Mesh& mesh, const Incidence& inc, std::span<const 
        face[2]);
 }
 
-int face_corner_count(FaceType type) {
-  return (type == FaceType::Tri3 || type == FaceType::Tri6) ? 3 : 4;
-}
-
 // Integrates N_a * (traction or -p n) over the faces of a face set into F(:, column).
 void add_face_loads(const Mesh& mesh, const Incidence* inc, const std::vector<FaceBlock>& faces,
                     const Eigen::Vector3d& traction, double pressure, Eigen::MatrixXd& F,
@@ -284,7 +280,7 @@ void add_face_loads(const Mesh& mesh, const Incidence* inc, const std::vector<Fa
       if (pressure != 0.0) {
         shape_functions(block.type, rule[0].xi, N, dN);
         const Eigen::Vector3d t1 = X.transpose() * dN.col(0), t2 = X.transpose() * dN.col(1);
-        const int corners = face_corner_count(block.type);
+        const int corners = face_facts(block.type).corners;
         Eigen::Vector3d centre = Eigen::Vector3d::Zero();
         for (int a = 0; a < corners; ++a) centre += X.row(a).transpose() / corners;
         sign = face_orientation(mesh, *inc, nodes, corners, t1.cross(t2), centre);

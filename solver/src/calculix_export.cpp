@@ -19,21 +19,6 @@ struct FileCloser {
 };
 using File = std::unique_ptr<std::FILE, FileCloser>;
 
-// Abaqus mid-edge corner pairs (0-based) after the corners.
-const std::vector<std::array<int, 2>>& abaqus_edges(ElementType type) {
-  static const std::vector<std::array<int, 2>> none;
-  static const std::vector<std::array<int, 2>> tet = {{0, 1}, {1, 2}, {2, 0},
-                                                      {0, 3}, {1, 3}, {2, 3}};
-  static const std::vector<std::array<int, 2>> hex = {{0, 1}, {1, 2}, {2, 3}, {3, 0},
-                                                      {4, 5}, {5, 6}, {6, 7}, {7, 4},
-                                                      {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-  switch (type) {
-    case ElementType::Tet10: return tet;
-    case ElementType::Hex20: return hex;
-    default: return none;
-  }
-}
-
 // Comma-separated integers, at most 16 entries per line (the Abaqus/ccx
 // limit), a trailing comma on each line that continues.
 void write_id_list(std::FILE* file, const std::vector<long long>& ids, size_t first_line) {
@@ -51,32 +36,11 @@ void write_id_list(std::FILE* file, const std::vector<long long>& ids, size_t fi
 
 }  // namespace
 
-const char* calculix_element_name(ElementType type) {
-  switch (type) {
-    case ElementType::Tet4: return "C3D4";
-    case ElementType::Tet10: return "C3D10";
-    case ElementType::Hex8: return "C3D8";
-    case ElementType::Hex20: return "C3D20";
-  }
-  fail("unknown element type {}", int(type));
-}
+const char* calculix_element_name(ElementType type) { return element_facts(type).calculix_name; }
 
 std::vector<int> calculix_node_order(ElementType type) {
-  const int corners = corner_nodes(type);
-  std::vector<int> order;
-  for (int a = 0; a < corners; ++a) order.push_back(a);
-  for (const auto& [a, b] : abaqus_edges(type)) {
-    int found = -1;
-    for (int m = corners; m < nodes_per_element(type); ++m) {
-      const std::array<int, 2> pair = edge_corners(type, m);
-      if ((pair[0] == a && pair[1] == b) || (pair[0] == b && pair[1] == a)) found = m;
-    }
-    require(found >= 0, "{}: no mid-edge node between corners {} and {}", name_of(type), a, b);
-    order.push_back(found);
-  }
-  require(int(order.size()) == nodes_per_element(type), "{}: node order has {} of {} nodes",
-          name_of(type), order.size(), nodes_per_element(type));
-  return order;
+  const auto order = element_facts(type).calculix_from_gmsh;
+  return {order.begin(), order.end()};
 }
 
 void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_forces,

@@ -4,6 +4,7 @@
 // isotropic elastic solid. Templated on the node count so the small dense
 // algebra has fixed sizes.
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -86,15 +87,17 @@ double element_stiffness(const NodeMatrix<NPE>& X, const RuleTable<NPE>& rule, d
   return min_det;
 }
 
-// Calls f.template operator()<NPE>(block_index, block) with the block's node count.
+// Calls f.template operator()<NPE>() with the node count of `type`, a
+// compile-time constant taken from the element table (one instantiation per
+// row of all_element_types).
 template <typename F>
 void dispatch_block(ElementType type, F&& f) {
-  switch (type) {
-    case ElementType::Tet4: f.template operator()<4>(); break;
-    case ElementType::Tet10: f.template operator()<10>(); break;
-    case ElementType::Hex8: f.template operator()<8>(); break;
-    case ElementType::Hex20: f.template operator()<20>(); break;
-  }
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((type == all_element_types[I]
+          ? (f.template operator()<element_facts(all_element_types[I]).nodes>(), true)
+          : false) ||
+     ...);
+  }(std::make_index_sequence<all_element_types.size()>());
 }
 
 // True when every mid-edge node of a quadratic element lies at the midpoint

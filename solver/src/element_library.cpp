@@ -9,21 +9,9 @@ namespace kinetofem::fem {
 
 namespace {
 
-// Mid-edge nodes as pairs of corners, Gmsh ordering (see mesh.hpp).
-constexpr std::array<std::array<int, 2>, 6> kTetEdges = {
-    {{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}}};
-constexpr std::array<std::array<int, 2>, 12> kHexEdges = {{{0, 1},
-                                                           {0, 3},
-                                                           {0, 4},
-                                                           {1, 2},
-                                                           {1, 5},
-                                                           {2, 3},
-                                                           {2, 6},
-                                                           {3, 7},
-                                                           {4, 5},
-                                                           {4, 7},
-                                                           {5, 6},
-                                                           {6, 7}}};
+// Mid-edge nodes as pairs of corners, Gmsh ordering (element_traits.hpp).
+constexpr const auto& kTetEdges = element_tables::tet_edges;
+constexpr const auto& kHexEdges = element_tables::hex_edges;
 constexpr double kHexCorners[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                       {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
 constexpr double kQuadCorners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
@@ -280,12 +268,10 @@ Eigen::MatrixXd reference_nodes(ElementType type) {
 }
 
 std::array<int, 2> edge_corners(ElementType type, int mid_node) {
-  if (type == ElementType::Tet10) {
-    const auto& e = kTetEdges[size_t(mid_node - 4)];
-    return {e[0], e[1]};
-  }
-  const auto& e = kHexEdges[size_t(mid_node - 8)];
-  return {e[0], e[1]};
+  const ElementFacts& facts = element_facts(type);
+  require(mid_node >= facts.corners && mid_node < facts.nodes, "{} has no mid-edge node {}",
+          facts.name, mid_node);
+  return facts.edges[size_t(mid_node - facts.corners)];
 }
 
 }  // namespace kinetofem::fem

@@ -7,98 +7,26 @@
 
 namespace kinetofem::fem {
 
-int nodes_per_element(ElementType type) {
-  switch (type) {
-    case ElementType::Tet4: return 4;
-    case ElementType::Tet10: return 10;
-    case ElementType::Hex8: return 8;
-    case ElementType::Hex20: return 20;
-  }
-  return 0;
-}
+int nodes_per_element(ElementType type) { return element_facts(type).nodes; }
 
-int nodes_per_face(FaceType type) {
-  switch (type) {
-    case FaceType::Tri3: return 3;
-    case FaceType::Tri6: return 6;
-    case FaceType::Quad4: return 4;
-    case FaceType::Quad8: return 8;
-  }
-  return 0;
-}
+int nodes_per_face(FaceType type) { return face_facts(type).nodes; }
 
-const char* name_of(ElementType type) {
-  switch (type) {
-    case ElementType::Tet4: return "TET4";
-    case ElementType::Tet10: return "TET10";
-    case ElementType::Hex8: return "HEX8";
-    case ElementType::Hex20: return "HEX20";
-  }
-  return "?";
-}
+const char* name_of(ElementType type) { return element_facts(type).name; }
 
-const char* name_of(FaceType type) {
-  switch (type) {
-    case FaceType::Tri3: return "TRI3";
-    case FaceType::Tri6: return "TRI6";
-    case FaceType::Quad4: return "QUAD4";
-    case FaceType::Quad8: return "QUAD8";
-  }
-  return "?";
-}
+const char* name_of(FaceType type) { return face_facts(type).name; }
 
-int corner_nodes(ElementType type) {
-  return (type == ElementType::Tet4 || type == ElementType::Tet10) ? 4 : 8;
-}
+int corner_nodes(ElementType type) { return element_facts(type).corners; }
 
-FaceType face_type_of(ElementType type) {
-  switch (type) {
-    case ElementType::Tet4: return FaceType::Tri3;
-    case ElementType::Tet10: return FaceType::Tri6;
-    case ElementType::Hex8: return FaceType::Quad4;
-    case ElementType::Hex20: return FaceType::Quad8;
-  }
-  return FaceType::Tri3;
-}
+FaceType face_type_of(ElementType type) { return element_facts(type).face_type; }
 
-int faces_per_element(ElementType type) { return corner_nodes(type) == 4 ? 4 : 6; }
+int faces_per_element(ElementType type) { return element_facts(type).face_count; }
 
 std::vector<int> element_face_nodes(ElementType type, int face) {
-  // Corners of each face, ordered counter-clockwise seen from outside
-  // (outward normal by the right-hand rule), then the face's mid-edge nodes
-  // in the order of its edges (c0-c1, c1-c2, ...).
-  static const int tet_faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  static const int hex_faces[6][4] = {{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5},
-                                      {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
-  // Mid-edge node of the edge between two corners (Gmsh ordering).
-  auto tet_edge = [](int a, int b) {
-    static const int edges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}};
-    for (int e = 0; e < 6; ++e)
-      if ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a))
-        return 4 + e;
-    return -1;
-  };
-  auto hex_edge = [](int a, int b) {
-    static const int edges[12][2] = {{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 5}, {2, 3},
-                                     {2, 6}, {3, 7}, {4, 5}, {4, 7}, {5, 6}, {6, 7}};
-    for (int e = 0; e < 12; ++e)
-      if ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a))
-        return 8 + e;
-    return -1;
-  };
-  require(face >= 0 && face < faces_per_element(type), "element face {} out of range for {}",
-          face, name_of(type));
-  std::vector<int> nodes;
-  if (corner_nodes(type) == 4) {
-    nodes.assign(tet_faces[face], tet_faces[face] + 3);
-    if (type == ElementType::Tet10)
-      for (int k = 0; k < 3; ++k) nodes.push_back(tet_edge(nodes[k], nodes[(k + 1) % 3]));
-  } else {
-    nodes.assign(hex_faces[face], hex_faces[face] + 4);
-    if (type == ElementType::Hex20)
-      for (int k = 0; k < 4; ++k) nodes.push_back(hex_edge(nodes[k], nodes[(k + 1) % 4]));
-  }
-  return nodes;
+  const ElementFacts& facts = element_facts(type);
+  require(face >= 0 && face < facts.face_count, "element face {} out of range for {}", face,
+          facts.name);
+  const auto nodes = facts.face(face);
+  return {nodes.begin(), nodes.end()};
 }
 
 Index Mesh::element_count() const {

@@ -11,7 +11,8 @@
 //          VTK  8..19 = edges 01, 12, 23, 30, 45, 56, 67, 74, 04, 15, 26, 37
 //
 // vtk_from_gmsh(type)[k] is the Gmsh local node that becomes VTK local node k:
-// vtk_connectivity[k] = gmsh_connectivity[vtk_from_gmsh(type)[k]].
+// vtk_connectivity[k] = gmsh_connectivity[vtk_from_gmsh(type)[k]]. The orders
+// and XDMF codes are rows of fem::element_facts (solver/element_traits.hpp).
 #include <span>
 #include <vector>
 

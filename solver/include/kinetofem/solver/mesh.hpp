@@ -51,14 +51,14 @@
 
 #include <Eigen/Core>
 
+#include "kinetofem/solver/element_traits.hpp"
+
 namespace kinetofem::fem {
 
 using Index = std::int64_t;
 using NodeCoordinates = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-enum class ElementType { Tet4, Tet10, Hex8, Hex20 };
-enum class FaceType { Tri3, Tri6, Quad4, Quad8 };
-
+// Shorthands for the facts of element_traits.hpp.
 int nodes_per_element(ElementType type);
 int nodes_per_face(FaceType type);
 const char* name_of(ElementType type);  // "TET4", ...
