@@ -5,8 +5,8 @@
 
 For every file and every reader -- "XDMFReader" (Xdmf2, the GUI's "XDMF Reader"),
 "Xdmf3ReaderS" and "Xdmf3ReaderT" -- a child pvpython process opens the file,
-updates the pipeline at several time steps (first, last and some between;
-UpdatePipeline(t) with the time given: without one the Xdmf3 readers load every
+updates the pipeline at the first, middle and last time step
+(UpdatePipeline(t) with the time given: without one the Xdmf3 readers load every
 step of a temporal collection at once) and reports per block the number of
 points and cells and every point, cell and field array (components, tuples,
 per-component range, a few sample tuples). Everything the reader prints
@@ -22,6 +22,16 @@ shows here as a difference (kinetofem writes 6-component fields as Matrix).
 Options:
   --expect FILE.json   also compare with expectations (written by the unit test
                        XdmfParaViewSample: times, blocks, counts, arrays, samples)
+  --times N            the file must have N time steps
+  --require-blocks A,B every reader must give these blocks (by the XDMF Reader's
+                       names; the Xdmf3 readers name none, theirs are matched by
+                       position) at every time step read, none of them empty
+  --summary FILE.toml  compare what every reader shows at every time step read with
+                       the run's own key results (kinetofem's .summary.toml): the
+                       peak von Mises (max of von_mises_max over the per-link
+                       blocks), each link's fatigue utilization, the assembly's
+                       total deformation (no displacement above it), and mode
+                       shapes that are not zero in the vibration blocks
   --screenshot PNG     render FIELD on the deformed bodies (Warp By Vector of
                        "displacement") at the last time step and save PNG; fails
                        if the picture shows (almost) nothing but background
@@ -67,9 +77,8 @@ def time_steps(reader):
 
 
 def probe_indices(count):
-    if count <= 4:
-        return list(range(count))
-    return sorted({0, count // 3, (2 * count) // 3, count - 1})
+    """The first, middle and last time step."""
+    return sorted({0, (count - 1) // 2, count - 1}) if count else []
 
 
 def sample_indices(tuples):
@@ -307,6 +316,103 @@ def compare_expectation(summary, expect, problems):
                                 where, label, name, i, got, values))
 
 
+def block_index(reference, name):
+    """Index of block NAME in the XDMF Reader's (named) output, or None."""
+    for step in reference["steps"]:
+        for i, block in enumerate(step["blocks"]):
+            if block["name"] == name:
+                return i
+    return None
+
+
+def array_range(block, label, name):
+    entry = block["arrays"].get(label, {}).get(name)
+    if entry is None or "range" not in entry:
+        return None
+    return entry["range"]
+
+
+def largest(values):
+    return max(values) if values else None
+
+
+def check_requirements(summaries, blocks, times, run_summary, problems):
+    """--times, --require-blocks and --summary, in every reader's output."""
+    if not summaries:
+        return
+    reference = next((s for s in summaries if s["reader"] == "XDMFReader"), None)
+    for summary in summaries:
+        tag = summary["reader"]
+        if times is not None and len(summary["times"]) != times:
+            problems.append("%s: %d time steps, expected %d" % (tag, len(summary["times"]), times))
+        count = len(summary["times"])
+        wanted = probe_indices(count)
+        read = [step["index"] for step in summary["steps"]]
+        if count and read != wanted:
+            problems.append("%s: read the time steps %s, expected the first, middle and last %s" % (
+                tag, read, wanted))
+    if reference is None:
+        if blocks or run_summary:
+            problems.append("the block checks need the XDMF Reader (it names the blocks)")
+        return
+    index = {}
+    for name in blocks:
+        i = block_index(reference, name)
+        if i is None:
+            problems.append("XDMFReader: no block %r (blocks: %s)" % (
+                name, [b["name"] for b in reference["steps"][0]["blocks"]] if reference["steps"] else []))
+        else:
+            index[name] = i
+    for summary in summaries:
+        for step in summary["steps"]:
+            at = "%s, t = %s" % (summary["reader"], step["time"])
+            for name, i in index.items():
+                if i >= len(step["blocks"]) or step["blocks"][i]["points"] == 0:
+                    problems.append("%s: block %s missing or empty" % (at, name))
+    if not run_summary:
+        return
+    links = [n for n in index if "." not in n and n != "mechanism"]
+    assembly = [n for n in index if n.startswith("assembly.")]
+    vibration = [n for n in index if n.startswith("vibration.")]
+    peak = run_summary.get("max_von_mises_mpa")
+    total = run_summary.get("total_deformation_mm")
+    for summary in summaries:
+        for step in summary["steps"]:
+            at = "%s, t = %s" % (summary["reader"], step["time"])
+            b = step["blocks"]
+            if any(index[n] >= len(b) for n in index):
+                continue  # reported above
+            if peak is not None and links:
+                ranges = [array_range(b[index[n]], "point", "von_mises_max") for n in links]
+                if None in ranges:
+                    problems.append("%s: a per-link block without von_mises_max" % at)
+                elif not close(largest([r[0][1] for r in ranges]), peak * 1e6, 1e-9):
+                    problems.append("%s: largest von_mises_max %.9g Pa, the run's peak %.9g Pa" % (
+                        at, largest([r[0][1] for r in ranges]), peak * 1e6))
+            for n in links:
+                want = run_summary.get("fatigue_utilization_" + n)
+                if want is None:
+                    continue
+                r = array_range(b[index[n]], "point", "fatigue_utilization")
+                if r is None or not close(r[0][1], want, 1e-9):
+                    problems.append("%s: block %s fatigue_utilization up to %s, the run's %.9g" % (
+                        at, n, r[0][1] if r else None, want))
+            if total is not None and assembly:
+                ranges = [array_range(b[index[n]], "point", "displacement_magnitude") for n in assembly]
+                if None in ranges:
+                    problems.append("%s: an assembly block without displacement_magnitude" % at)
+                else:
+                    top = largest([r[0][1] for r in ranges])
+                    if not (0.0 < top <= total * 1e-3 * (1 + 1e-9)):
+                        problems.append("%s: assembly displacement up to %.9g m, the run's total "
+                                        "deformation %.9g m" % (at, top, total * 1e-3))
+            for n in vibration:
+                r = array_range(b[index[n]], "point", "mode_1_magnitude")
+                if r is None or not r[0][1] > 0.0:
+                    problems.append("%s: block %s: mode_1_magnitude %s, expected a mode shape" % (
+                        at, n, r[0] if r else None))
+
+
 def print_summary(summary, verbose):
     print("  %-13s %d time steps%s" % (summary["reader"], len(summary["times"]),
                                       (" (%g .. %g s)" % (summary["times"][0], summary["times"][-1]))
@@ -391,6 +497,9 @@ def main():
     parser.add_argument("files", nargs="*")
     parser.add_argument("--child", nargs=2, metavar=("READER", "FILE"), help=argparse.SUPPRESS)
     parser.add_argument("--expect")
+    parser.add_argument("--times", type=int)
+    parser.add_argument("--require-blocks", default="")
+    parser.add_argument("--summary")
     parser.add_argument("--screenshot")
     parser.add_argument("--field", default="von_mises")
     parser.add_argument("--screenshot-reader", default="Xdmf3ReaderT")
@@ -416,6 +525,12 @@ def main():
     if args.expect:
         with open(args.expect) as f:
             expect = json.load(f)
+    run_summary = None
+    if args.summary:
+        import tomllib
+        with open(args.summary, "rb") as f:
+            run_summary = tomllib.load(f)
+    blocks = [b for b in args.require_blocks.split(",") if b]
     failed = False
     for path in args.files:
         path = os.path.abspath(path)  # Xdmf3 resolves the .h5 against the path as given
@@ -436,6 +551,7 @@ def main():
                     compare_expectation(summary, expect, problems)
         for other in summaries[1:]:
             compare_summaries(summaries[0], other, problems)
+        check_requirements(summaries, blocks, args.times, run_summary, problems)
         if problems:
             failed = True
             print("  FAIL (%d):" % len(problems))
@@ -444,8 +560,11 @@ def main():
             if len(problems) > 60:
                 print("    ... and %d more" % (len(problems) - 60))
         else:
-            print("  OK: %s agree, no warnings%s" % (", ".join(readers),
-                                                     ", as expected" if expect else ""))
+            print("  OK: %s agree, no warnings%s%s%s" % (
+                ", ".join(readers), ", as expected" if expect else "",
+                ", every required block (%s)" % ", ".join(blocks) if blocks else "",
+                ", the run's peak von Mises, fatigue utilizations and total deformation"
+                if run_summary else ""))
     if args.screenshot:
         share = screenshot(os.path.abspath(args.files[-1]), args.screenshot, args.field,
                            args.screenshot_reader)

@@ -7,7 +7,10 @@
 # -O1 and line tables only: the sanitizers' recommended optimisation, and half
 # the compile time of -O2 -g for the same stack traces. lld: the instrumented
 # test programs link several times faster than with GNU ld.
-#   usage: bash scripts/configure-instrumented.sh [TARGET...]   (default: all)
+#   usage: bash scripts/configure-instrumented.sh [TARGET... | --ctest]
+#     (default: all; --ctest: what `ctest -LE large` runs, scripts/ctest-targets.sh:
+#     everything but tests/large, whose compile and link the sanitizer stage
+#     does not need; benchmarks are off in this tree)
 #   BUILD_DIR (default build-asan), KINETOFEM_JOBS (default nproc)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,6 +22,10 @@ CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithD
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld -DCMAKE_SHARED_LINKER_FLAGS=-fuse-ld=lld -DCMAKE_MODULE_LINKER_FLAGS=-fuse-ld=lld \
   -DKINETOFEM_SANITIZE=ON -DKINETOFEM_BUILD_FUZZ=ON -DKINETOFEM_BUILD_TESTS=ON -DKINETOFEM_BUILD_BENCH=OFF > /dev/null
-targets=()
-(($#)) && targets=(--target "$@")
-cmake --build "$build" -j "${KINETOFEM_JOBS:-$(nproc)}" "${targets[@]}"
+targets=("$@")
+if [[ ${1:-} == --ctest ]]; then
+  mapfile -t targets < <(bash scripts/ctest-targets.sh "$build")
+fi
+target_args=()
+((${#targets[@]})) && target_args=(--target "${targets[@]}")
+cmake --build "$build" -j "${KINETOFEM_JOBS:-$(nproc)}" "${target_args[@]}"

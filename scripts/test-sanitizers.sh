@@ -13,7 +13,7 @@ build=${BUILD_DIR:-build-asan}
 jobs=${KINETOFEM_JOBS:-$(nproc)}
 bash scripts/setup-deps.sh
 start=$(date +%s)
-BUILD_DIR=$build bash scripts/configure-instrumented.sh
+BUILD_DIR=$build bash scripts/configure-instrumented.sh --ctest
 built=$(date +%s)
 # Leaks: on. Third-party leaks (OpenMP runtime, OpenBLAS, Gmsh, HDF5, MPI
 # start-up) are suppressed by name in tests/sanitizers/lsan.supp, ours are not.
@@ -41,8 +41,41 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/test
 # coarse manipulator jobs (ManipulatorJob.FactorsThatDoNotFitTogether..., 62 s
 # here; the set-up part by part and the freed factors run instrumented in
 # ElasticAssembly.PartsSetUpOneAtATime... and LinearSolver.AReleasedFactor...).
+#
+# Also left out (2026-12-03; seconds: the test's time in the last clean CI run's
+# sanitizer stage, two tests at a time on 2 cores, 1644 s summed over the 742
+# tests run): long runs that only repeat numeric work the release stage checks,
+# on code that other instrumented tests run too. Together 517 s of the 1644, so
+# about 260 s of the stage's wall time.
+#   FatigueSuperposition.LeverManipulator... (124 s): the lever twin of
+#     FatigueSuperposition.LeverChainManipulator..., which stays (superposed and
+#     step-by-step stresses, the fatigue stage, the results file, instrumented);
+#     the lever (four-bar) job stays in ManipulatorJob.LeverManipulatorHasThreeLinks.
+#   Superposition.LeverChainManipulator... (58 s): the same two load paths as the
+#     fatigue one that stays (with the assembly, which runs instrumented in
+#     ManipulatorJob.LeverChainRun...); FatigueSuperposition.StepByStepWithSome-
+#     FieldsWritten... stays (output.field_every, fields of some steps only).
+#   CantileverModes.FirstThree... (90 s): mesh convergence of three frequencies;
+#     the eigen solver runs instrumented in FreeFreeModes.*, TipMass.*,
+#     CraigBampton.* (all kept).
+#   Verify.QuickSuite... (81 s): the verification rows once more (their code
+#     runs instrumented in tests/verification); both reports are written
+#     instrumented by Verify.WrongReferenceShowsFail... (kept).
+#   AmgSolver.Tet10Cantilever... (40 s): a 24 000-DoF AMG-PCG solve; the same AMG
+#     code runs instrumented in AmgSolver.Hex20..., .InterpolationWithRotations...,
+#     .AutoSwitches... and the MPI test.
+#   VibrationOverMotion.WithoutDamping... (34 s), .ASlowMotionIsQuasiStatic...
+#     (27 s): the modal march's physics over several strokes and dampings; the
+#     stage runs instrumented in VibrationOverMotion.WritesFrequencies...,
+#     .TheReducedStaticDeflection..., .BadOptions... (kept).
+#   QuadraticElements/CantileverTest.* (23 + 23 s): TET10 and HEX20 convergence
+#     on three meshes; both elements run instrumented in most FE tests.
+#   Spec4QManipulator.IsokinematicPair... (17 s): two closed curves compared as
+#     point sets (kinematics only, no memory handling of its own).
+# Every robustness test, every unit test of parsing, I/O and memory handling,
+# and the fuzz targets still run instrumented.
 # Keeps CI under its time limit; KINETOFEM_SANITIZER_SKIP="" runs them too.
-skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.|Superposition\.(LeverManipulator|FieldsAtEveryKth|FieldTimes)|Types/NodeGraphOrderingTest\.|AssemblyModes\.|ManipulatorJob\.VibrationKeys|ManipulatorJob\.FactorsThatDoNotFitTogether)'}
+skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.|Superposition\.(LeverManipulator|FieldsAtEveryKth|FieldTimes|LeverChainManipulator)|Types/NodeGraphOrderingTest\.|AssemblyModes\.|ManipulatorJob\.VibrationKeys|ManipulatorJob\.FactorsThatDoNotFitTogether|FatigueSuperposition\.LeverManipulator|CantileverModes\.FirstThree|Verify\.QuickSuite|AmgSolver\.Tet10Cantilever|VibrationOverMotion\.(WithoutDamping|ASlowMotionIsQuasiStatic)|QuadraticElements/CantileverTest\.|Spec4QManipulator\.IsokinematicPair)'}
 exclude=()
 [[ -n $skip ]] && exclude=(-E "$skip")
 status=0

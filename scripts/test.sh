@@ -10,6 +10,25 @@
 # KINETOFEM_TEST_STAGES picks stages, e.g. KINETOFEM_TEST_STAGES=release for a
 # quick local run (default: "release sanitizers fuzz", which CI runs).
 # Extra arguments go to ctest in the release and sanitizer stages.
+#
+# What each stage builds: only what its ctest runs (scripts/ctest-targets.sh):
+# not the benchmarks (bench/: run by hand, no test runs them; about 25 s of
+# compile on 2 cores in the release tree, off anyway in build-asan/) nor the
+# `large` tests (ctest -LE large leaves them out). scripts/main.sh built the
+# program only; this builds the rest that the tests need.
+#
+# CI time (.ci/run runs exactly this, limit 90 min): a clean clone on the 2-core
+# machine took 1133 s release (build ~960, ctest 173), 2134 s sanitizers (build
+# 1311, tests 823), 40 s fuzz: 55 min. The cuts (reasons in the scripts named):
+#   release     no benchmarks, no `large` (above): ~15 s less build. The ParaView
+#               test now runs here (was skipped: no ParaView): about +45 s of
+#               the stage's wall time (90 s of one job of two).
+#   sanitizers  (scripts/test-sanitizers.sh) ten more long numeric repeats left
+#               to the release stage: ~517 s of the 1644 s of test time summed
+#               over the two jobs, ~260 s wall; the instrumented tree without
+#               the UBSan checks that cost the most compile time for the least
+#               (scripts/configure-instrumented.sh).
+# The estimate and its basis: README.md ("Two commands") and the scripts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 stages=${KINETOFEM_TEST_STAGES:-release sanitizers fuzz}
@@ -26,7 +45,13 @@ for stage in $stages; do
   echo "== test.sh: stage '$stage' =="
   case $stage in
     release)
-      bash scripts/build.sh
+      # ParaView (pvpython, xvfb) for postproc.XdmfParaView.ThreeReadersAgree: a
+      # test-only dependency, so here and not in scripts/setup-deps.sh (main.sh).
+      # Installed, its test must run: a missing pvpython fails it instead of
+      # skipping it (KINETOFEM_REQUIRE_PARAVIEW, scripts/test-xdmf-paraview.sh).
+      bash scripts/setup-test-deps.sh
+      export KINETOFEM_REQUIRE_PARAVIEW=1
+      bash scripts/build.sh --ctest
       # One OpenMP (and OpenMP-OpenBLAS) thread per test when ctest runs
       # several at once: 2 tests x 2 threads on 2 cores oversubscribe. Measured
       # on the idle 2-core machine, ctest -LE large -j2: 88.8 and 93.5 s with
