@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/mechanisms/manipulator_names.hpp"
 
 namespace kinetofem::app {
 
@@ -42,7 +43,7 @@ void add_manipulator_assembly_keys(std::vector<KeySpec>& s) {
              "also solve the manipulator as one elastic structure held by its frame: total deformation, the gripper "
              "point H's deflection, its split and compliance");
   s.push_back({.path = "assembly.chain_ea_per_strand_n", .type = Type::Number, .unit = "N",
-               .default_number = kDefaultManipulatorChain.ea_per_strand_n, .min = 0, .max = kMaxEaN, .min_exclusive = true,
+               .default_number = mech::manipulator::kDefaultChain.ea_per_strand_n, .min = 0, .max = kMaxEaN, .min_exclusive = true,
                .doc = "lever-chain: axial stiffness EA of one chain strand (default: ISO 606 08B-1, see the case README)",
                .range_note = kEaNote});
   s.push_back({.path = "assembly.chain_strands", .type = Type::Integer, .default_number = double(kDefaultStrands), .min = 1, .max = 3,
@@ -52,15 +53,13 @@ void add_manipulator_assembly_keys(std::vector<KeySpec>& s) {
                .doc = "torsional stiffness of the lever's drive train (motor, gearbox, coupling); absent: rigid"});
 }
 
-std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFile& c, const std::string& chain_name,
-                                                                     const std::string& drive_name,
-                                                                     const std::string& arm_body,
-                                                                     const std::string& gripper_face) {
+std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFile& c, bool with_chain) {
+  namespace names = mech::manipulator;
   if (!c.boolean("assembly.enabled")) return std::nullopt;
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
-  if (!chain_name.empty()) {
-    o.chains.push_back({chain_name, chain_ea(c, "assembly.chain_ea_per_strand_n", "assembly.chain_strands", 0)});
+  if (with_chain) {
+    o.chains.push_back({names::kChain, chain_ea(c, "assembly.chain_ea_per_strand_n", "assembly.chain_strands", 0)});
   } else {
     // Keys at their defaults (as `kinetofem case --template` writes them) say
     // nothing; another value would be silently unused.
@@ -68,16 +67,16 @@ std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFi
       require(!c.has(key) || c.number(key) == at_default,
               "{}: the lever manipulator has no chain (this key is for mechanism.type = \"lever_chain\")", c.where(key));
     };
-    unused("assembly.chain_ea_per_strand_n", kDefaultManipulatorChain.ea_per_strand_n);
+    unused("assembly.chain_ea_per_strand_n", names::kDefaultChain.ea_per_strand_n);
     unused("assembly.chain_strands", double(kDefaultStrands));
   }
   if (c.has("assembly.drive_stiffness_n_m_per_rad")) {
     const double k = c.number("assembly.drive_stiffness_n_m_per_rad");
     require(std::isfinite(k), "{} = {}: the drive's stiffness must be a finite number of N*m/rad (leave the key out "
             "for a rigid drive)", c.where("assembly.drive_stiffness_n_m_per_rad"), k);
-    o.drives.push_back({drive_name, k});
+    o.drives.push_back({names::kLeverDrive, k});
   }
-  o.points.push_back({"H", arm_body, "H", gripper_face});
+  o.points.push_back({names::kPointH, names::kArm, names::kPointH, names::kGripperMount});
   return o;
 }
 

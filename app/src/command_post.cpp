@@ -38,7 +38,7 @@ struct PostOptions {
   double separation_mm = 10.0;
   std::string history;  // NODE, x,y,z (mm) or a mechanism history name
   std::string body;
-  std::string field = "von_mises";
+  std::string field = post::layout::kVonMises;
   fs::path csv_dir, png_dir;
   bool all = false;
   double deformation_scale = 0.0;  // 0: automatic

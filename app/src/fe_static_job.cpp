@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "kinetofem/app/common_keys.hpp"
+#include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/units.hpp"
@@ -148,10 +149,9 @@ void require_set(const Map& sets, const std::string& name, const CaseFile& c,
 }  // namespace
 
 FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   Stopwatch total;
   const std::string name = case_name(c);
-  log.info("kinetofem: case '{}' ({}), type fe_static", name, c.path().string());
+  const Log log = start_case_log(c, options, name, "type fe_static");
 
   // Fail before the long steps if the results cannot be written.
   std::error_code ec;
@@ -235,11 +235,11 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
   provenance.command_line = options.command_line;
   post::ResultsWriter writer(summary.results_file, provenance);
   auto& body = writer.add_body("part", model.mesh);
-  body.write_static("displacement", "m", u, post::kVectorComponents);
-  body.write_static("displacement_magnitude", "m", magnitude);
-  body.write_static("stress", "Pa", stress.stress_pa, post::kVoigtComponents);
-  body.write_static("von_mises", "Pa", stress.von_mises_pa);
-  body.write_static("principal_stress", "Pa", stress.principal_pa, {"1", "2", "3"});
+  body.write_static(post::layout::kDisplacement, "m", u, post::kVectorComponents);
+  body.write_static(post::layout::kDisplacementMagnitude, "m", magnitude);
+  body.write_static(post::layout::kStress, "Pa", stress.stress_pa, post::kVoigtComponents);
+  body.write_static(post::layout::kVonMises, "Pa", stress.von_mises_pa);
+  body.write_static(post::layout::kPrincipalStress, "Pa", stress.principal_pa, post::kPrincipalComponents);
   writer.commit();
 
   const auto vm_at = model.mesh.nodes.row(vm_node) / kMm;

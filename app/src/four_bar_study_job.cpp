@@ -44,9 +44,8 @@ const std::vector<KeySpec>& four_bar_study_schema() {
 }
 
 MechanismCaseSummary run_four_bar_study(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   const std::string name = mechanism_case_name(c);
-  log.info("kinetofem: case '{}' ({}), lever-chain vs four-bar study (SPEC §2)", name, c.path().string());
+  const Log log = start_case_log(c, options, name, "lever-chain vs four-bar study (SPEC §2)");
   const mech::LeverChainGeometry g = read_lever_chain_geometry(c, "geometry.");
   const double lo = c.number("study.dphi_min_deg"), hi = c.number("study.dphi_max_deg");
   require(lo < hi, "{}: dphi_min_deg must be below dphi_max_deg", c.where("study.dphi_max_deg"));

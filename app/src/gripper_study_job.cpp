@@ -63,9 +63,8 @@ const std::vector<KeySpec>& gripper_study_schema() {
 }
 
 MechanismCaseSummary run_gripper_study(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   const std::string name = mechanism_case_name(c);
-  log.info("kinetofem: case '{}' ({}), crank-slider gripper study (SPEC §6)", name, c.path().string());
+  const Log log = start_case_log(c, options, name, "crank-slider gripper study (SPEC §6)");
   const double sigma = c.number("gripper.sigma"), gamma = c.number("gripper.gamma");
   mech::GripperRangeOptions ro;
   ro.tolerance = c.number("criterion.tolerance");

@@ -53,9 +53,8 @@ const std::vector<KeySpec>& lever_chain_kinematics_schema() {
 }
 
 MechanismCaseSummary run_lever_chain_kinematics(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   const std::string name = mechanism_case_name(c);
-  log.info("kinetofem: case '{}' ({}), lever-chain kinematics (SPEC §1)", name, c.path().string());
+  const Log log = start_case_log(c, options, name, "lever-chain kinematics (SPEC §1)");
   mech::LeverChainGeometry g;
   try {
     if (c.text_value("geometry.input") == "synthesis") {

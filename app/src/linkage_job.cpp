@@ -12,6 +12,7 @@
 #include "kinetofem/app/fatigue_keys.hpp"
 #include "kinetofem/app/vibration_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/app/motion_case_keys.hpp"
 #include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/app/part_keys.hpp"
 #include "kinetofem/core/error.hpp"
@@ -404,18 +405,16 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
 }
 
 LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
-  const Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   Stopwatch total;
   const std::string name = mechanism_case_name(c);
 
   // ---- read the case: the mechanism, its parts, the run ----------------------
   driver::MotionStressCase run_case;
-  run_case.label = c.path().string();
   run_case.model = read_linkage_model(c);
   const mech::MultibodyModel& m = run_case.model;
-  log.info("kinetofem: case '{}' ({}), linkage: {} bodies, {} joints, {} motion drives, {} force drives, {} springs, {} parts",
-           name, c.path().string(), m.bodies.size(), m.joints.size(), m.motion_drives.size(), m.force_drives.size(),
-           m.springs.size(), c.count("part"));
+  const Log log = start_case_log(c, options, name, fmt::format("linkage: {} bodies, {} joints, {} motion drives, {} force "
+                                 "drives, {} springs, {} parts", m.bodies.size(), m.joints.size(), m.motion_drives.size(),
+                                 m.force_drives.size(), m.springs.size(), c.count("part")));
   run_case.parts = read_parts(c, m);
   for (auto& part : run_case.parts) part.file_options.trusted = options.trust_part_files;
   run_case.times = mech::equally_spaced_times(c.number("simulation.duration_s"), c.integer("simulation.output_times"));
@@ -442,19 +441,9 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
     require(dot != std::string::npos, "{} = \"{}\": write \"body.point\"", c.where("output.tracked_points"), text);
     run_case.tracked_points.push_back({text.substr(0, dot), text.substr(dot + 1)});
   }
-  {
-    std::vector<std::string> bodies_with_parts;
-    for (const auto& p : run_case.parts) bodies_with_parts.push_back(p.attachments.body);
-    run_case.assembly = read_linkage_assembly(c, m, bodies_with_parts);
-    run_case.vibration = read_vibration(c, run_case.assembly);
-    run_case.fatigue = read_fatigue(c, bodies_with_parts);
-  }
-  run_case.material = read_material(c);
-  run_case.mesh = read_part_mesh_options(c, options.output_dir);
-  run_case.stress = read_stress_options(c);
-  run_case.stress.callback_steps = read_field_output_steps(c, run_case.times);
-  run_case.results_file = mechanism_results_path(c, options, name);
-  run_case.provenance = mechanism_provenance(c, options);
+  read_shared_motion_keys(c, options, name, [&](const std::vector<std::string>& bodies) {
+    return read_linkage_assembly(c, m, bodies);
+  }, run_case);
 
   // ---- run the pipeline ------------------------------------------------------
   driver::MotionStressRun result = driver::run_motion_to_stress(run_case, log);
@@ -475,9 +464,7 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   std::printf("\nSummary of '%s' (linkage, %s, %zu output times over %.4g s)\n%s", name.c_str(), method.c_str(),
               run.results.frames.size(), run_case.times.back(), extremes.text.c_str());
   if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
-  if (run.assembly) std::printf("%s", structure::format_assembly_summary(*run.assembly).c_str());
-  if (result.vibration) std::printf("%s", structure::format_vibration_summary(*result.vibration).c_str());
-  report_fatigue(run.fatigue, run.results_file);
+  print_stage_summaries(result);
   std::printf("%s\n", run.results.format_checks().c_str());
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());
   return run;

@@ -10,10 +10,12 @@
 #include "kinetofem/app/fatigue_keys.hpp"
 #include "kinetofem/app/vibration_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
+#include "kinetofem/app/motion_case_keys.hpp"
 #include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/mechanisms/manipulator_names.hpp"
 #include "kinetofem/mechanisms/published_analyses.hpp"
 #include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/pipeline/manipulator_preset.hpp"
@@ -120,7 +122,7 @@ void print_published_comparison(const ManipulatorSummary& s, mech::ManipulatorTy
   row("max von Mises (per-link)", pub.von_mises_source, pub.von_mises_pa, s.static_max_von_mises_pa, s.max_von_mises_pa,
       kMpa, "MPa", 3);
   if (s.assembly) {
-    const structure::AssemblySummary& a = *s.assembly;
+    const pipeline::AssemblySummary& a = *s.assembly;
     row("total deformation, assembly (figure reading)", pub.deformation_figure_source, pub.deformation_figure_m,
         a.static_max_displacement_m, a.max_displacement_m, kMm, "mm", 4);
     row("total deformation, assembly (text reading)", "SPEC §3, text: about 0.1 mm", pub.deformation_text_m,
@@ -136,23 +138,10 @@ void print_published_comparison(const ManipulatorSummary& s, mech::ManipulatorTy
               s.assembly ? "" : " The assembly is off (assembly.enabled = false).");
 }
 
-}  // namespace
-
-ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options) {
-  const Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
-  Stopwatch total;
-  const std::string name = mechanism_case_name(c);
-
-  // ---- read the case: the SPEC §1/§2 preset and the run ---------------------
-  const mech::ManipulatorDefinition def = read_definition(c);
-  const bool chain = def.type == mech::ManipulatorType::LeverChain;
-  const auto& g = def.geometry;
-  log.info("kinetofem: case '{}' ({}), {} manipulator", name, c.path().string(), chain ? "lever-chain" : "lever");
-  log.info("  synthesis (SPEC §1): a = {:.3f} mm, c = {:.3f}, h = {:.3f}, r = {:.3f}; b0 = {:.3f} mm, l0 = {:.3f} mm, "
-           "alpha0 = {:.3f} deg",
-           g.a_m / kMm, g.c_m / kMm, g.h_m / kMm, g.r_m / kMm, g.b0_m / kMm, g.l0_m / kMm, g.alpha0_rad / kDeg);
+// The manipulator's own half of the motion case: the preset's model and
+// parts, the output times, the dynamics, the static pose and H's path.
+driver::MotionStressCase read_preset(const CaseFile& c, const mech::ManipulatorDefinition& def) {
   driver::MotionStressCase run_case;
-  run_case.label = c.path().string();
   run_case.model = mech::make_manipulator_model(def);
   for (auto& body : run_case.model.bodies)  // the placeholders: no case values, the meshes give them
     if (!body.fixed) body.mass_kg = body.inertia_kgm2 = 0.0, body.com_body.setZero();
@@ -165,50 +154,47 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   run_case.dynamics.method = c.text_value("dynamics.method") == "idas" ? pipeline::DynamicsMethod::Idas
                                                                       : pipeline::DynamicsMethod::Kinematic;
   if (c.boolean("static_study.enabled")) run_case.static_pose = std::vector<double>{c.number("static_study.dphi_deg")};
-  run_case.tracked_points = {{"arm", "H"}};
-  run_case.assembly = read_manipulator_assembly(c, chain ? "chain" : "", "lever_drive", "arm", "gripper_mount");
-  run_case.vibration = read_vibration(c, run_case.assembly);
-  {
-    std::vector<std::string> bodies;
-    for (const auto& p : run_case.parts) bodies.push_back(p.attachments.body);
-    run_case.fatigue = read_fatigue(c, bodies);
-  }
-  run_case.material = read_material(c);
-  run_case.mesh = read_part_mesh_options(c, options.output_dir);
-  run_case.stress = read_stress_options(c);
-  run_case.stress.callback_steps = read_field_output_steps(c, run_case.times);
-  run_case.results_file = mechanism_results_path(c, options, name);
-  run_case.provenance = mechanism_provenance(c, options);
+  run_case.tracked_points = {{mech::manipulator::kArm, mech::manipulator::kPointH}};
+  return run_case;
+}
+
+}  // namespace
+
+ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options) {
+  Stopwatch total;
+  const std::string name = mechanism_case_name(c);
+
+  // ---- read the case: the SPEC §1/§2 preset, then the keys every motion case shares
+  const mech::ManipulatorDefinition def = read_definition(c);
+  const bool chain = def.type == mech::ManipulatorType::LeverChain;
+  const Log log = start_case_log(c, options, name, fmt::format("{} manipulator", chain ? "lever-chain" : "lever"));
+  const auto& g = def.geometry;
+  log.info("  synthesis (SPEC §1): a = {:.3f} mm, c = {:.3f}, h = {:.3f}, r = {:.3f}; b0 = {:.3f} mm, l0 = {:.3f} mm, "
+           "alpha0 = {:.3f} deg",
+           g.a_m / kMm, g.c_m / kMm, g.h_m / kMm, g.r_m / kMm, g.b0_m / kMm, g.l0_m / kMm, g.alpha0_rad / kDeg);
+  driver::MotionStressCase run_case = read_preset(c, def);
+  read_shared_motion_keys(c, options, name, [&](const std::vector<std::string>&) {
+    return read_manipulator_assembly(c, chain);
+  }, run_case);
 
   // ---- run the pipeline --------------------------------------------------------
   const driver::MotionStressRun run = driver::run_motion_to_stress(run_case, log);
 
   // ---- summary -----------------------------------------------------------------
-  ManipulatorSummary summary;
-  summary.mechanism = chain ? "lever_chain" : "lever";
-  summary.links = run.parts;
-  summary.results_file = run.results_file;
-  summary.meshing_seconds = run.meshing_seconds;
-  summary.dynamics_seconds = run.dynamics_seconds;
   const pipeline::PartExtremes pe = pipeline::part_extremes(run.parts);
-  summary.max_von_mises_pa = pe.max_von_mises_pa;
-  summary.max_displacement_m = pe.max_displacement_m;
-  summary.static_max_von_mises_pa = pe.static_max_von_mises_pa;
-  summary.static_max_displacement_m = pe.static_max_displacement_m;
   const pipeline::MechanismExtremes me = pipeline::mechanism_extremes(run.model, run.motion);
-  summary.max_drive_torque_nm = me.max_abs_drive_effort;
-  summary.min_chain_tension_n = me.min_chain_tension_n;
-  summary.max_chain_tension_n = me.max_chain_tension_n;
-  summary.assembly = run.assembly;
-  summary.fatigue = run.fatigue;
-  summary.vibration = run.vibration;
-  summary.factorization = run.factorization;
+  ManipulatorSummary summary{
+      .mechanism = chain ? "lever_chain" : "lever", .links = run.parts,
+      .max_von_mises_pa = pe.max_von_mises_pa, .max_displacement_m = pe.max_displacement_m,
+      .static_max_von_mises_pa = pe.static_max_von_mises_pa, .static_max_displacement_m = pe.static_max_displacement_m,
+      .max_drive_torque_nm = me.max_abs_drive_effort, .min_chain_tension_n = me.min_chain_tension_n,
+      .max_chain_tension_n = me.max_chain_tension_n, .assembly = run.assembly, .vibration = run.vibration,
+      .factorization = run.factorization, .fatigue = run.fatigue, .results_file = run.results_file,
+      .meshing_seconds = run.meshing_seconds, .dynamics_seconds = run.dynamics_seconds};
   std::printf("\nSummary of '%s' (%s manipulator, %zu output times over %.3f s)\n%s%s", name.c_str(),
               chain ? "lever-chain" : "lever", run.motion.frames.size(), run_case.times.back(),
               pipeline::format_part_table(run.parts).c_str(), me.text.c_str());
-  if (run.assembly) std::printf("%s", structure::format_assembly_summary(*run.assembly).c_str());
-  if (run.vibration) std::printf("%s", structure::format_vibration_summary(*run.vibration).c_str());
-  report_fatigue(run.fatigue, run.results_file);
+  print_stage_summaries(run);
   print_published_comparison(summary, def.type, run_case.static_pose.has_value());
   summary.total_seconds = total.seconds();
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", summary.results_file.string().c_str(), summary.total_seconds);

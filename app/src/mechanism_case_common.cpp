@@ -20,6 +20,12 @@ std::vector<KeySpec> mechanism_case_keys(const std::string& type) {
   };
 }
 
+Log start_case_log(const CaseFile& c, const RunOptions& options, const std::string& name, const std::string& what) {
+  Log log = job_log(options);
+  log.info("kinetofem: case '{}' ({}), {}", name, c.path().string(), what);
+  return log;
+}
+
 std::string mechanism_case_name(const CaseFile& c) {
   return case_name(c);
 }

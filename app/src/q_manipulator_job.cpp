@@ -42,9 +42,8 @@ const std::vector<KeySpec>& q_manipulator_schema() {
 }
 
 MechanismCaseSummary run_q_manipulator(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   const std::string name = mechanism_case_name(c);
-  log.info("kinetofem: case '{}' ({}), Q-manipulator (SPEC §4)", name, c.path().string());
+  const Log log = start_case_log(c, options, name, "Q-manipulator (SPEC §4)");
   const std::vector<double> lengths = read_numbers(c, "manipulator.lengths_mm", 0, kMm);
   const std::vector<double> ratios = read_numbers(c, "manipulator.ratios", 0, 1.0);
   const std::vector<double> angles = read_numbers(c, "manipulator.initial_angles_deg", 0, kDeg);

@@ -33,7 +33,7 @@ RunSummary summary_of(const FeStaticSummary& s) {
 
 // The elastic assembly's key results: total deformation (max |u| over all
 // nodes, world, from the rigid pose) and the tracked points' deflection.
-void add_assembly_results(RunSummary& s, const std::optional<structure::AssemblySummary>& a) {
+void add_assembly_results(RunSummary& s, const std::optional<pipeline::AssemblySummary>& a) {
   if (!a) return;
   s.extra.push_back({"total_deformation_mm", a->max_displacement_m / kMm});
   if (a->has_static_study) s.extra.push_back({"static_total_deformation_mm", a->static_max_displacement_m / kMm});
@@ -65,7 +65,7 @@ void add_fatigue_results(RunSummary& s, const std::vector<pipeline::PartFatigue>
 // The vibration's key results (Hz, s, mm): the first natural frequency's
 // range over the motion and in the static pose, per tracked point the dynamic
 // amplification, the ringing after the stop and the settling time (inf: never).
-void add_vibration_results(RunSummary& s, const std::optional<structure::VibrationSummary>& v) {
+void add_vibration_results(RunSummary& s, const std::optional<pipeline::VibrationSummary>& v) {
   if (!v) return;
   s.extra.push_back({"vibration_min_first_frequency_hz", v->lowest_first_hz});
   s.extra.push_back({"vibration_max_first_frequency_hz", v->highest_first_hz});

@@ -48,10 +48,9 @@ const std::vector<KeySpec>& spherical_manipulator_schema() {
 }
 
 MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptions& options) {
-  Log log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
   const std::string name = mechanism_case_name(c);
   const mech::SphericalVariant& v = mech::spherical_variant(c.text_value("manipulator.variant")[0]);
-  log.info("kinetofem: case '{}' ({}), spherical manipulator variant {} (SPEC §5)", name, c.path().string(), v.name);
+  const Log log = start_case_log(c, options, name, fmt::format("spherical manipulator variant {} (SPEC §5)", v.name));
   mech::SphericalSizingOptions sizing;
   sizing.sleeve_ratio = c.number("manipulator.sleeve_ratio");
   sizing.sleeve_diameter_ratio = c.number("manipulator.sleeve_diameter_ratio");

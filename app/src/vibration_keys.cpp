@@ -11,7 +11,7 @@ namespace {
 
 using Type = KeySpec::Type;
 
-const structure::VibrationOptions kDefaults{};  // the defaults, declared in structure/
+const pipeline::VibrationOptions kDefaults{};  // the defaults, declared in pipeline/
 
 }  // namespace
 
@@ -40,7 +40,7 @@ void add_vibration_keys(std::vector<KeySpec>& s) {
                       "value after the stop"});
 }
 
-std::optional<structure::VibrationOptions> read_vibration(const CaseFile& c,
+std::optional<pipeline::VibrationOptions> read_vibration(const CaseFile& c,
                                                           const std::optional<structure::AssemblyOptions>& assembly) {
   if (!c.boolean("vibration.enabled")) {
     // A key without `enabled` would be silently unused: a mistake. With
@@ -58,7 +58,7 @@ std::optional<structure::VibrationOptions> read_vibration(const CaseFile& c,
   require(assembly->coupling == structure::BoreCoupling::Distributing,
           "{} = true needs assembly.coupling = \"distributing\" (the parts are reduced on their couplings' motion)",
           c.where("vibration.enabled"));
-  structure::VibrationOptions o;
+  pipeline::VibrationOptions o;
   o.modes.modes = int(c.integer("vibration.modes"));
   o.modes.part_mode_cutoff_hz = c.number("vibration.part_mode_cutoff_hz");
   o.modes.cutoff_factor = c.number("vibration.cutoff_factor");

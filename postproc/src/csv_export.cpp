@@ -122,7 +122,7 @@ void write_body_fields_csv(const std::filesystem::path& path, const ResultsFile&
   const auto stored = results.envelopes(body);
   for (const auto& name : stored) {
     const EnvelopeData e = results.read_envelope(body, name);
-    add_envelope(e.operation == "max" ? name : name + "_" + e.operation, e.units, e.values, e.step, e.times_s);
+    add_envelope(e.operation == layout::kEnvelopeMax ? name : name + "_" + e.operation, e.units, e.values, e.step, e.times_s);
   }
   for (const auto& name : results.series_fields(body)) {
     if (std::find(stored.begin(), stored.end(), name) != stored.end()) continue;

@@ -28,6 +28,17 @@ void require_scalar(const FieldMatrix& values, const std::string& body, const st
           body, where, field, values.cols());
 }
 
+// The body's envelope of `field` with its mesh read; values, steps and times still to fill.
+BodyEnvelope start_envelope(const ResultsFile& results, const std::string& body, const std::string& field,
+                            BodyEnvelope::Source source) {
+  BodyEnvelope env;
+  env.body = body;
+  env.field = field;
+  env.source = source;
+  env.nodes_m = results.read_mesh(body).nodes;
+  return env;
+}
+
 }  // namespace
 
 fem::Index BodyEnvelope::peak_node() const {
@@ -59,11 +70,7 @@ BodyEnvelope envelope_from_series(const ResultsFile& results, const std::string&
   const auto fields = results.series_fields(body);
   require(contains(fields, field), "body '{}' in '{}' has no series field '{}' (series fields: {})",
           body, results.path().string(), field, listed(fields));
-  BodyEnvelope env;
-  env.body = body;
-  env.field = field;
-  env.source = BodyEnvelope::Source::Series;
-  env.nodes_m = results.read_mesh(body).nodes;
+  BodyEnvelope env = start_envelope(results, body, field, BodyEnvelope::Source::Series);
   env.times_s = results.series_times(body);
   const fem::Index n = env.nodes_m.rows();
   env.max_value = Eigen::VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
@@ -86,14 +93,10 @@ BodyEnvelope max_envelope(const ResultsFile& results, const std::string& body,
   const auto envelopes = results.envelopes(body);
   if (contains(envelopes, field)) {
     const EnvelopeData data = results.read_envelope(body, field);
-    if (data.operation == "max") {
+    if (data.operation == layout::kEnvelopeMax) {
       require_scalar(data.values, body, field, "envelope");
-      BodyEnvelope env;
-      env.body = body;
-      env.field = field;
+      BodyEnvelope env = start_envelope(results, body, field, BodyEnvelope::Source::FileEnvelope);
       env.units = data.units;
-      env.source = BodyEnvelope::Source::FileEnvelope;
-      env.nodes_m = results.read_mesh(body).nodes;
       env.times_s = data.times_s;
       require(data.values.rows() == env.nodes_m.rows(),
               "body '{}' envelope '{}' has {} rows for {} nodes", body, field, data.values.rows(),
@@ -115,12 +118,8 @@ BodyEnvelope max_envelope(const ResultsFile& results, const std::string& body,
           listed(results.series_fields(body)), listed(statics));
   const FieldData data = results.read_static(body, field);
   require_scalar(data.values, body, field, "static");
-  BodyEnvelope env;
-  env.body = body;
-  env.field = field;
+  BodyEnvelope env = start_envelope(results, body, field, BodyEnvelope::Source::Static);
   env.units = data.units;
-  env.source = BodyEnvelope::Source::Static;
-  env.nodes_m = results.read_mesh(body).nodes;
   env.max_value = data.values.col(0);
   env.max_step.assign(size_t(data.values.rows()), -1);
   return env;

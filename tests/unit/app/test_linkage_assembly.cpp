@@ -80,7 +80,7 @@ RunOptions quiet_options(const std::string& dir) {
   return options;
 }
 
-const structure::PointSummary& point(const structure::AssemblySummary& a, const std::string& name) {
+const pipeline::PointSummary& point(const pipeline::AssemblySummary& a, const std::string& name) {
   const auto it = std::find_if(a.points.begin(), a.points.end(), [&](const auto& p) { return p.name == name; });
   EXPECT_NE(it, a.points.end()) << "no tracked point " << name;
   return it != a.points.end() ? *it : a.points.front();
@@ -102,8 +102,8 @@ TEST(LinkageAssembly, LeverChainLinkageWithThePresetsPartsEqualsTheManipulatorCa
 
   ASSERT_TRUE(linkage.assembly.has_value());
   ASSERT_TRUE(manipulator.assembly.has_value());
-  const structure::AssemblySummary& l = *linkage.assembly;
-  const structure::AssemblySummary& m = *manipulator.assembly;
+  const pipeline::AssemblySummary& l = *linkage.assembly;
+  const pipeline::AssemblySummary& m = *manipulator.assembly;
   const double tol = 1e-6;
   const auto relative = [](double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); };
   std::printf("  total deformation over the motion: linkage %.9e m, manipulator %.9e m (rel. %.1e)\n",
@@ -121,8 +121,8 @@ TEST(LinkageAssembly, LeverChainLinkageWithThePresetsPartsEqualsTheManipulatorCa
   EXPECT_GT(m.static_max_displacement_m, 0.0);
   EXPECT_NEAR(l.static_max_displacement_m, m.static_max_displacement_m, tol * m.static_max_displacement_m);
 
-  const structure::PointSummary& hl = point(l, "H");
-  const structure::PointSummary& hm = point(m, "H");
+  const pipeline::PointSummary& hl = point(l, "H");
+  const pipeline::PointSummary& hm = point(m, "H");
   std::printf("  H's largest deflection:            linkage %.9e m, manipulator %.9e m (rel. %.1e)\n",
               hl.max_displacement_m, hm.max_displacement_m, relative(hl.max_displacement_m, hm.max_displacement_m));
   std::printf("  H's static deflection:             linkage %.9e m, manipulator %.9e m (rel. %.1e)\n",

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "kinetofem/core/log.hpp"
+
 namespace kinetofem::app {
 
 struct RunOptions {
@@ -21,6 +23,11 @@ struct RunOptions {
   // outside the case folder (meshes/geo_file_scan.hpp, docs/robustness.md).
   bool trust_part_files = false;
 };
+
+// The console of a job: silent but for its summary under --quiet.
+inline Log job_log(const RunOptions& options) {
+  return Log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
+}
 
 // Key results of a finished run, written by each job as
 // OUTPUT_DIR/<name>.summary.toml (atomically: temporary file + rename) and

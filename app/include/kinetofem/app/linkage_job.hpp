@@ -33,8 +33,8 @@
 #include "kinetofem/mechanisms/multibody/results.hpp"
 #include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
-#include "kinetofem/structure/assembly_over_motion.hpp"
-#include "kinetofem/structure/vibration_over_motion.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -53,8 +53,8 @@ struct LinkageRun {
   double min_chain_tension_n = 0.0, max_chain_tension_n = 0.0;  // 0 when the model has no chain
   double max_abs_drive_effort = 0.0;                           // over all drives (N m or N)
   std::vector<pipeline::PartSummary> parts;                    // one per [[part]]: stress over the motion
-  std::optional<structure::AssemblySummary> assembly;          // assembly.enabled
-  std::optional<structure::VibrationSummary> vibration;  // vibration.enabled
+  std::optional<pipeline::AssemblySummary> assembly;          // assembly.enabled
+  std::optional<pipeline::VibrationSummary> vibration;  // vibration.enabled
   std::vector<pipeline::PartFatigue> fatigue;                  // fatigue.enabled: one per [[part]]
 };
 

@@ -17,8 +17,8 @@
 #include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/pipeline/part_factorization.hpp"
-#include "kinetofem/structure/assembly_over_motion.hpp"
-#include "kinetofem/structure/vibration_over_motion.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -34,8 +34,8 @@ struct ManipulatorSummary {
   double static_max_von_mises_pa = 0, static_max_displacement_m = 0;  // static pose study
   double max_drive_torque_nm = 0, min_chain_tension_n = 0, max_chain_tension_n = 0;
   // The elastic assembly (assembly.enabled): total deformation, H's deflection.
-  std::optional<structure::AssemblySummary> assembly;
-  std::optional<structure::VibrationSummary> vibration;  // vibration.enabled
+  std::optional<pipeline::AssemblySummary> assembly;
+  std::optional<pipeline::VibrationSummary> vibration;  // vibration.enabled
   pipeline::PartFactorizationReport factorization;       // side by side or one after the other
   std::vector<pipeline::PartFatigue> fatigue;  // fatigue.enabled: one per link
   std::filesystem::path results_file;

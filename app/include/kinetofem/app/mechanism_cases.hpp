@@ -54,6 +54,10 @@ MechanismCaseSummary run_gripper_study(const CaseFile& case_file, const RunOptio
 
 // The [case] keys every mechanism case type declares (type restricted to `type`).
 std::vector<KeySpec> mechanism_case_keys(const std::string& type);
+// The console of a case's run (job_log), after its first line:
+// "kinetofem: case '<name>' (<case file>), <what>".
+Log start_case_log(const CaseFile& case_file, const RunOptions& options, const std::string& name,
+                   const std::string& what);
 // case.name, or the case folder's name (case_name(): checked as a file name).
 std::string mechanism_case_name(const CaseFile& case_file);
 // options.output_dir / <name>.h5, creating the directory (Error naming it).

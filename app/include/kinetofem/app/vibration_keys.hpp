@@ -16,7 +16,7 @@
 
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
-#include "kinetofem/structure/vibration_over_motion.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
 
 namespace kinetofem::app {
 
@@ -28,7 +28,7 @@ void add_vibration_keys(std::vector<KeySpec>& schema);
 // elastic assembly (assembly.enabled = false) or with rigid-bore couplings,
 // a damping ratio of 1 or more. (modes < 1, a negative ratio, a tolerance
 // <= 0 are range errors of the schema.)
-std::optional<structure::VibrationOptions> read_vibration(const CaseFile& case_file,
+std::optional<pipeline::VibrationOptions> read_vibration(const CaseFile& case_file,
                                                           const std::optional<structure::AssemblyOptions>& assembly);
 
 }  // namespace kinetofem::app

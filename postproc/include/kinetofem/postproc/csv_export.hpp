@@ -25,7 +25,7 @@ class ResultsFile;
 
 // `units`: the SI units of the hot spot values (e.g. "Pa"); `field` names the value column.
 void write_hot_spots_csv(const std::filesystem::path& path, const std::vector<HotSpot>& hot_spots,
-                         const std::string& field = "von_mises", const std::string& units = "Pa");
+                         const std::string& field = layout::kVonMises, const std::string& units = "Pa");
 
 void write_history_csv(const std::filesystem::path& path, const TimeHistory& history);
 

@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include "kinetofem/solver/mesh.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
 
 namespace kinetofem::post {
 
@@ -55,14 +56,14 @@ struct BodyEnvelope {
 // else its series, else its static field. Throws Error naming the body and
 // the fields it has if none holds `field`, or if the field is not scalar.
 BodyEnvelope max_envelope(const ResultsFile& results, const std::string& body,
-                          const std::string& field = "von_mises");
+                          const std::string& field = layout::kVonMises);
 // Always recomputed from /series/<field> (one step in memory at a time).
 BodyEnvelope envelope_from_series(const ResultsFile& results, const std::string& body,
-                                  const std::string& field = "von_mises");
+                                  const std::string& field = layout::kVonMises);
 
 // The max envelopes of every body that has `field` (bodies without it are skipped).
 std::vector<BodyEnvelope> max_envelopes(const ResultsFile& results,
-                                        const std::string& field = "von_mises");
+                                        const std::string& field = layout::kVonMises);
 
 struct HotSpot {
   std::string body;

@@ -82,17 +82,20 @@ inline constexpr const char* kDimensionless = "1";
 // (SeriesField::geometry).
 inline constexpr const char* kXdmfGeometry = "xdmf_geometry";
 
-// The elastic assembly (structure/assembly_over_motion.hpp): its bodies are
+// The elastic assembly (pipeline/assembly_over_motion.hpp): its bodies are
 // "assembly.<b>", its histories "assembly.*" (docs/results.md).
 inline constexpr const char* kAssemblyBodyPrefix = "assembly.";
 inline constexpr const char* kAssemblyPointPrefix = "assembly.point.";      // + <P>.displacement, ...
 inline constexpr const char* kAssemblyMaxDisplacement = "assembly.max_displacement";
 
-// The vibration of the manipulator over the motion (structure/vibration_over_motion.hpp,
+// The vibration of the manipulator over the motion (pipeline/vibration_over_motion.hpp,
 // docs/results.md): bodies "vibration.static.<b>", "vibration.lowest.<b>" (mode shapes: meshes
 // placed in world coordinates at the pose, static fields mode_<i> and mode_<i>_magnitude,
 // i = 1..m), the history kVibrationFrequency (T_m x m, Hz) and tables.
 inline constexpr const char* kVibrationBodyPrefix = "vibration.";
+inline constexpr const char* kVibrationStaticBodyPrefix = "vibration.static.";  // + <b>: at the static pose
+inline constexpr const char* kVibrationLowestBodyPrefix = "vibration.lowest.";  // + <b>: at the lowest pose
+inline constexpr const char* kModePrefix = "mode_";  // static fields mode_<i>, mode_<i>_magnitude (i from 1)
 inline constexpr const char* kVibrationFrequency = "vibration.frequency";                // history, Hz
 inline constexpr const char* kVibrationStaticFrequency = "vibration.static_frequency";   // table m x 1, Hz
 inline constexpr const char* kVibrationResponseTime = "vibration.response.time";         // table n x 1, s
@@ -114,6 +117,21 @@ inline constexpr const char* kFatigueUtilization = "fatigue_utilization";     //
 inline constexpr const char* kFatigueDetailCategory = "fatigue_detail_category";  // Pa
 inline constexpr const char* kFatigueMaxRange = "fatigue_max_range";          // Pa
 inline constexpr const char* kFatiguePlaneNormal = "fatigue_plane_normal";    // 1, 3 components
+
+// Field names: the nodal fields (static/, series/, element_fields/) and envelopes the writers
+// put on a body and the readers (post, PNG, CSV, hot spots, XDMF) look up.
+inline constexpr const char* kDisplacement = "displacement";                    // m, 3 components
+inline constexpr const char* kDisplacementMagnitude = "displacement_magnitude";  // m, |u|
+inline constexpr const char* kPosition = "position";        // m, world axes (the assembly's geometry)
+inline constexpr const char* kStress = "stress";             // Pa, Voigt (kVoigtComponents)
+inline constexpr const char* kVonMises = "von_mises";        // Pa
+inline constexpr const char* kPrincipalStress = "principal_stress";  // Pa, kPrincipalComponents
+// Prefix of a static field that holds a time-series field's value at the static pose
+// ("static_" + kDisplacement), suffix of a vector field's magnitude (<field> + "_magnitude").
+inline constexpr const char* kStaticPrefix = "static_";
+inline constexpr const char* kMagnitudeSuffix = "_magnitude";
+// The extreme an envelope holds (attribute of envelopes/<field>).
+inline constexpr const char* kEnvelopeMax = "max";
 
 // "block_<i>", the group of element block i (blocks keep their order).
 std::string block_name(size_t index);

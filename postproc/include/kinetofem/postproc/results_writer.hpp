@@ -128,7 +128,7 @@ class BodyWriter {
   // times only); stored as the envelope's own `time`. Empty: the series' times.
   void write_envelope(const std::string& name, const std::string& units,
                       const Eigen::Ref<const FieldMatrix>& values,
-                      const Eigen::Ref<const IndexMatrix>& step, const std::string& operation = "max",
+                      const Eigen::Ref<const IndexMatrix>& step, const std::string& operation = layout::kEnvelopeMax,
                       const std::vector<double>& step_times_s = {});
 
  private:
