@@ -152,37 +152,23 @@ void decode(const std::string& text, std::map<std::size_t, Outcome>& outcomes) {
   }
 }
 
-}  // namespace
-
-std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& comm) {
-  require(options.jobs >= 1, "--jobs {}: must be a whole number of runs at once, 1 or more", options.jobs);
-  const int hardware_threads = std::max(1, int(std::thread::hardware_concurrency()));
-  const int jobs = std::min(options.jobs, kJobsPerThread * hardware_threads);
-  if (jobs < options.jobs && !options.quiet && comm.rank() == 0)
-    std::printf("kinetofem batch: --jobs %d lowered to %d: at most %d runs at once per hardware thread (%d here)\n",
-                options.jobs, jobs, kJobsPerThread, hardware_threads);
-  const std::vector<BatchRun> plan = plan_batch(options.cases, options.overrides);
-  const fs::path& dir = options.output_dir;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) fail("{}: cannot create the output directory: {}", dir.string(), ec.message());
-  const fs::path exe = options.executable.empty() ? self_executable() : options.executable;
-  const int threads = child_threads(jobs);
-
-  std::vector<std::size_t> mine;
-  for (std::size_t i = 0; i < plan.size(); ++i)
-    if (int(i % std::size_t(comm.size())) == comm.rank()) mine.push_back(i);
-  const std::string rank_tag = comm.size() > 1 ? fmt::format(" (rank {})", comm.rank()) : "";
-  if (!options.quiet && comm.rank() == 0)
-    std::printf("kinetofem batch: %zu runs from %zu case files, %d at once%s, results in %s\n", plan.size(),
-                options.cases.size(), jobs,
-                comm.size() > 1 ? fmt::format(" on each of {} ranks", comm.size()).c_str() : "",
-                dir.string().c_str());
-  std::fflush(stdout);
-
+// A batch under way on this rank: its plan, where it writes, and the outcome
+// of each of this rank's runs so far.
+struct Batch {
+  const BatchOptions& options;
+  const BatchComm& comm;
+  std::vector<BatchRun> plan;
+  fs::path dir;
+  fs::path exe;
+  int jobs = 1;     // runs at once on this rank
+  int threads = 1;  // OpenMP / BLAS threads of each run
+  std::vector<std::size_t> mine;  // this rank's runs: indices into plan
+  std::string rank_tag;           // " (rank r)" when there are several
   std::map<std::size_t, Outcome> outcomes;
   std::size_t finished = 0;
-  const auto report = [&](std::size_t index) {
+
+  // One progress line for a finished (or skipped) run.
+  void report(std::size_t index) {
     ++finished;
     if (options.quiet) return;
     const Outcome& o = outcomes[index];
@@ -197,22 +183,74 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
       std::printf("[%zu/%zu] case %s: failed in %.1f s%s: %s (log: %s)\n", finished, mine.size(), name.c_str(),
                   o.wall_time_s, rank_tag.c_str(), o.error.c_str(), log_path(dir, name).string().c_str());
     std::fflush(stdout);
-  };
-
-  std::vector<std::size_t> pending;
-  for (std::size_t index : mine) {
-    const BatchRun& run = plan[index];
-    if (!run.plan_error.empty()) {
-      outcomes[index] = {RunStatus::Failed, 0.0, run.plan_error};
-      report(index);
-    } else if (!options.force && up_to_date(run, dir)) {
-      outcomes[index] = {RunStatus::Skipped, 0.0, ""};
-      report(index);
-    } else {
-      pending.push_back(index);
-    }
   }
+  void settle(std::size_t index, Outcome outcome) {
+    outcomes[index] = std::move(outcome);
+    report(index);
+  }
+};
 
+// --jobs, at most kJobsPerThread runs per hardware thread.
+int allowed_jobs(const BatchOptions& options, const BatchComm& comm) {
+  require(options.jobs >= 1, "--jobs {}: must be a whole number of runs at once, 1 or more", options.jobs);
+  const int hardware_threads = std::max(1, int(std::thread::hardware_concurrency()));
+  const int jobs = std::min(options.jobs, kJobsPerThread * hardware_threads);
+  if (jobs < options.jobs && !options.quiet && comm.rank() == 0)
+    std::printf("kinetofem batch: --jobs %d lowered to %d: at most %d runs at once per hardware thread (%d here)\n",
+                options.jobs, jobs, kJobsPerThread, hardware_threads);
+  return jobs;
+}
+
+// The plan, the output directory and this rank's share of the runs (round robin).
+void plan_runs(Batch& b) {
+  b.plan = plan_batch(b.options.cases, b.options.overrides);
+  std::error_code ec;
+  fs::create_directories(b.dir, ec);
+  if (ec) fail("{}: cannot create the output directory: {}", b.dir.string(), ec.message());
+  b.exe = b.options.executable.empty() ? self_executable() : b.options.executable;
+  b.threads = child_threads(b.jobs);
+  for (std::size_t i = 0; i < b.plan.size(); ++i)
+    if (int(i % std::size_t(b.comm.size())) == b.comm.rank()) b.mine.push_back(i);
+  b.rank_tag = b.comm.size() > 1 ? fmt::format(" (rank {})", b.comm.rank()) : "";
+  if (!b.options.quiet && b.comm.rank() == 0)
+    std::printf("kinetofem batch: %zu runs from %zu case files, %d at once%s, results in %s\n", b.plan.size(),
+                b.options.cases.size(), b.jobs,
+                b.comm.size() > 1 ? fmt::format(" on each of {} ranks", b.comm.size()).c_str() : "",
+                b.dir.string().c_str());
+  std::fflush(stdout);
+}
+
+// Settles the runs that need no child (a plan error, up to date); returns the others.
+std::vector<std::size_t> runs_to_start(Batch& b) {
+  std::vector<std::size_t> pending;
+  for (std::size_t index : b.mine) {
+    const BatchRun& run = b.plan[index];
+    if (!run.plan_error.empty()) b.settle(index, {RunStatus::Failed, 0.0, run.plan_error});
+    else if (!b.options.force && up_to_date(run, b.dir)) b.settle(index, {RunStatus::Skipped, 0.0, ""});
+    else pending.push_back(index);
+  }
+  return pending;
+}
+
+// A finished child's outcome: done (and its hash written) or failed with its error line.
+Outcome outcome_of(const Batch& b, const BatchRun& run, int wait_status, double wall_time_s) {
+  Outcome o;
+  o.wall_time_s = wall_time_s;
+  if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
+    try {
+      write_file_atomically(hash_path(b.dir, run.name), run.hash + "\n");
+      o.status = RunStatus::Done;
+    } catch (const Error& e) {
+      o.error = e.what();
+    }
+  } else {
+    o.error = error_line(log_path(b.dir, run.name), wait_status);
+  }
+  return o;
+}
+
+// Runs the pending runs as children, at most b.jobs at once, until all have ended.
+void run_children(Batch& b, const std::vector<std::size_t>& pending) {
   struct Running {
     std::size_t index;
     Stopwatch clock;
@@ -224,18 +262,18 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
   std::map<pid_t, Running> running;
   std::size_t next = 0;
   while (next < pending.size() || !running.empty()) {
-    while (next < pending.size() && int(running.size()) < jobs) {
+    while (next < pending.size() && int(running.size()) < b.jobs) {
       const std::size_t index = pending[next++];
-      const BatchRun& run = plan[index];
+      const BatchRun& run = b.plan[index];
       // A stale hash or summary must not make a failed rerun look done.
-      fs::remove(hash_path(dir, run.name), ec);
-      fs::remove(run_summary_path(dir, run.name), ec);
+      std::error_code ec;
+      fs::remove(hash_path(b.dir, run.name), ec);
+      fs::remove(run_summary_path(b.dir, run.name), ec);
       try {
-        const pid_t pid = spawn_run(exe, run, dir, threads, options.trust_part_files);
+        const pid_t pid = spawn_run(b.exe, run, b.dir, b.threads, b.options.trust_part_files);
         running.emplace(pid, Running{index, Stopwatch(), core::KillOnTermination(pid)});
       } catch (const Error& e) {
-        outcomes[index] = {RunStatus::Failed, 0.0, e.what()};
-        report(index);
+        b.settle(index, {RunStatus::Failed, 0.0, e.what()});
       }
     }
     if (running.empty()) continue;
@@ -248,59 +286,64 @@ std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& co
     const auto it = running.find(pid);
     if (it == running.end()) continue;  // not one of the runs
     const std::size_t index = it->second.index;
-    const BatchRun& run = plan[index];
-    Outcome o;
-    o.wall_time_s = it->second.clock.seconds();
+    const double wall_time_s = it->second.clock.seconds();
     running.erase(it);
-    if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
-      try {
-        write_file_atomically(hash_path(dir, run.name), run.hash + "\n");
-        o.status = RunStatus::Done;
-      } catch (const Error& e) {
-        o.error = e.what();
-      }
-    } else {
-      o.error = error_line(log_path(dir, run.name), wait_status);
+    b.settle(index, outcome_of(b, b.plan[index], wait_status, wall_time_s));
+  }
+}
+
+// A run's row of the table: its outcome and the key results its summary file holds.
+BatchRow row_of(const Batch& b, std::size_t index, const Outcome& o) {
+  BatchRow row;
+  row.name = b.plan[index].name;
+  row.status = o.status;
+  row.wall_time_s = o.wall_time_s;
+  row.error = o.error;
+  if (o.status != RunStatus::Failed)
+    if (const auto s = read_run_summary(run_summary_path(b.dir, row.name))) {
+      if (std::isfinite(s->max_von_mises_pa)) row.max_von_mises_pa = s->max_von_mises_pa;
+      if (std::isfinite(s->max_displacement_m)) row.max_displacement_m = s->max_displacement_m;
+      for (const auto& [key, value] : s->extra)
+        if (key == "fatigue_min_life_h") row.min_fatigue_life_s = value * units::kHour;
+      row.results_file = s->results_file.string();
+      if (o.status == RunStatus::Skipped) row.wall_time_s = s->wall_time_s;
     }
-    outcomes[index] = o;
-    report(index);
-  }
+  return row;
+}
 
-  // ---- gather on rank 0 and build the table from what is on disk -----------------
-  const std::vector<std::string> gathered = comm.gather(encode(outcomes));
-  if (comm.rank() == 0)
-    for (std::size_t r = 1; r < gathered.size(); ++r) decode(gathered[r], outcomes);
-
+// Every rank's outcomes on rank 0, the rows built from what is on disk.
+std::vector<BatchRow> gather_rows(Batch& b) {
+  const std::vector<std::string> gathered = b.comm.gather(encode(b.outcomes));
+  if (b.comm.rank() == 0)
+    for (std::size_t r = 1; r < gathered.size(); ++r) decode(gathered[r], b.outcomes);
   std::vector<BatchRow> rows;
-  for (const auto& [index, o] : outcomes) {
-    BatchRow row;
-    row.name = plan[index].name;
-    row.status = o.status;
-    row.wall_time_s = o.wall_time_s;
-    row.error = o.error;
-    if (o.status != RunStatus::Failed)
-      if (const auto s = read_run_summary(run_summary_path(dir, row.name))) {
-        if (std::isfinite(s->max_von_mises_pa)) row.max_von_mises_pa = s->max_von_mises_pa;
-        if (std::isfinite(s->max_displacement_m)) row.max_displacement_m = s->max_displacement_m;
-        for (const auto& [key, value] : s->extra)
-          if (key == "fatigue_min_life_h") row.min_fatigue_life_s = value * units::kHour;
-        row.results_file = s->results_file.string();
-        if (o.status == RunStatus::Skipped) row.wall_time_s = s->wall_time_s;
-      }
-    rows.push_back(row);
-  }
-  if (comm.rank() != 0) return rows;
+  for (const auto& [index, o] : b.outcomes) rows.push_back(row_of(b, index, o));
+  return rows;
+}
 
-  write_file_atomically(dir / "batch_summary.csv", summary_csv(rows));
-  write_file_atomically(dir / "batch_summary.md", summary_markdown(rows));
+// batch_summary.csv and .md, and the table with the counts on the console.
+void write_table(const Batch& b, const std::vector<BatchRow>& rows) {
+  write_file_atomically(b.dir / "batch_summary.csv", summary_csv(rows));
+  write_file_atomically(b.dir / "batch_summary.md", summary_markdown(rows));
   std::size_t count[3] = {0, 0, 0};
   for (const auto& row : rows) ++count[int(row.status)];
-  if (!options.quiet) {
+  if (!b.options.quiet) {
     std::printf("\n%s\nbatch: %zu runs: %zu done, %zu skipped (up to date), %zu failed; table in %s and %s\n",
                 summary_markdown(rows).c_str(), rows.size(), count[0], count[1], count[2],
-                (dir / "batch_summary.md").string().c_str(), (dir / "batch_summary.csv").string().c_str());
+                (b.dir / "batch_summary.md").string().c_str(), (b.dir / "batch_summary.csv").string().c_str());
     std::fflush(stdout);
   }
+}
+
+}  // namespace
+
+std::vector<BatchRow> run_batch(const BatchOptions& options, const BatchComm& comm) {
+  Batch b{.options = options, .comm = comm, .dir = options.output_dir};
+  b.jobs = allowed_jobs(options, comm);
+  plan_runs(b);
+  run_children(b, runs_to_start(b));
+  std::vector<BatchRow> rows = gather_rows(b);
+  if (comm.rank() == 0) write_table(b, rows);
   return rows;
 }
 

@@ -17,6 +17,7 @@
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/commands.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/mechanisms/manipulator_names.hpp"
 #include "kinetofem/postproc/csv_export.hpp"
 #include "kinetofem/postproc/fatigue_nodes.hpp"
 #include "kinetofem/postproc/hot_spots.hpp"
@@ -354,8 +355,8 @@ void write_assembly_pictures(const post::ResultsFile& r, const post::AssemblyCon
     draw("assembly_static.png");
   }
   ao.pose = post::AssemblyPictureOptions::Pose::LargestDeflection;
-  ao.point = "H";
-  const bool has_h = std::find(assembly.points.begin(), assembly.points.end(), "H") != assembly.points.end();
+  ao.point = mech::manipulator::kPointH;  // the gripper point, when the assembly tracked it
+  const bool has_h = std::find(assembly.points.begin(), assembly.points.end(), ao.point) != assembly.points.end();
   draw(has_h ? "assembly_max_H.png" : "assembly_max.png");
   for (const auto& point : assembly.points) {
     const fs::path p = png_dir / ("deflection_" + file_safe(point) + ".png");
