@@ -15,7 +15,7 @@ PACKAGES=(
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libopenmpi-dev openmpi-bin
   libhypre-dev
-  libspectra-dev   # header-only Lanczos eigen solver: issue 14 (vibration)
+  libspectra-dev   # header-only Lanczos eigen solver of the vibration stage
   libcairo2-dev
   clang libclang-rt-14-dev lld   # libFuzzer, the sanitizer tree's linker: scripts/configure-instrumented.sh
 )

@@ -1,4 +1,4 @@
-// Unit-load superposition (issue 13) against the step-by-step solves, on the
+// Unit-load superposition (load_patterns.hpp) against the step-by-step solves, on the
 // two SPEC manipulators (SPEC §1 lever-chain, SPEC §2 lever) through the
 // whole program path (case keys -> pipeline -> results file), coarse meshes.
 //

@@ -50,7 +50,7 @@ TEST(ManipulatorJob, LeverChainRunWritesEveryLinkOverTheMotion) {
     const auto statics = file.read_static(body, "static_von_mises");
     EXPECT_LT((step0.values - statics.values).cwiseAbs().maxCoeff(), 1e-6 * statics.values.maxCoeff()) << body;
     // The lever-chain is statically determinate: the assembly's link stresses are
-    // the per-link model's (issue 12, verification 5: within 1e-6 of the peak).
+    // the per-link model's, within 1e-6 of the peak (the same link loads, the same meshes).
     ASSERT_EQ(file.series_times("assembly." + body).size(), 11u) << body;
     for (fem::Index k : {0, 5, 10}) {
       const auto per_link = file.read_step(body, "von_mises", k);
@@ -142,8 +142,8 @@ TEST(ManipulatorJob, FactorsThatDoNotFitTogetherAreMadeOneAtATimeWithTheSameResu
 TEST(ManipulatorJob, FactorAboveTheLimitSwitchesToTheIterativeSolverWithTheSameResult) {
   // solver.method = "auto" with a factor limit no link fits: CHOLMOD's symbolic
   // analysis predicts more and every link goes to AMG-PCG. Reference: the same
-  // case with the direct solver; required: 1e-6 relative (issue 6's criterion
-  // for the iterative path) on each link's peak von Mises and deformation.
+  // case with the direct solver; required: 1e-6 relative (the iterative path's
+  // acceptance criterion) on each link's peak von Mises and deformation.
   // The elastic assembly is off: this is the per-link iterative path (the
   // assembly's interface solves on AMG-PCG would only add run time).
   // 30 mm elements (about 7 k DoFs a link): AMG-PCG's ~100 iterations a

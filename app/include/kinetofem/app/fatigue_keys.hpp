@@ -1,5 +1,5 @@
 #pragma once
-// Case-file keys of the fatigue check (pipeline/part_fatigue.hpp, issue 15),
+// Case-file keys of the fatigue check (pipeline/part_fatigue.hpp),
 // declared once for the manipulator and linkage case types, and their reader.
 // Every key, unit and default: docs/cases.md; the method: docs/fatigue.md.
 //

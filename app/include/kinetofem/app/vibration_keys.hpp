@@ -1,6 +1,6 @@
 #pragma once
-// Case-file keys of the vibration over the motion (structure/
-// vibration_over_motion.hpp, issue 14), declared once for the manipulator and
+// Case-file keys of the vibration over the motion (pipeline/
+// vibration_over_motion.hpp), declared once for the manipulator and
 // linkage case types, and their reader. Keys, units and defaults:
 // docs/cases.md; the method: docs/vibration.md.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// The vibration of the manipulator over the motion in a results file (issue 14; written by
-// structure/vibration_over_motion.hpp, names in results_layout.hpp, layout::kVibration*,
+// The vibration of the manipulator over the motion in a results file (written by
+// pipeline/vibration_over_motion.hpp, names in results_layout.hpp, layout::kVibration*,
 // docs/results.md "Vibration"): what the file holds, and checked reads of it shared by the
 // `kinetofem post` summary and the pictures (png_plots.hpp, 6. and 7.).
 //
