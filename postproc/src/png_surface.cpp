@@ -14,16 +14,14 @@ std::vector<BoundaryFace> boundary_faces(const fem::Mesh& mesh) {
   std::vector<BoundaryFace> faces;
   std::vector<std::pair<Key, size_t>> keys;
   for (const auto& block : mesh.blocks) {
-    const int nf = fem::faces_per_element(block.type);
-    const fem::FaceType type = fem::face_type_of(block.type);
-    const long corners = long(corner_count(type));
-    std::vector<std::vector<int>> local;
-    for (int f = 0; f < nf; ++f) local.push_back(fem::element_face_nodes(block.type, f));
+    const fem::ElementFacts& facts = fem::element_facts(block.type);
+    const fem::FaceType type = facts.face_type;
+    const long corners = fem::face_facts(type).corners;
     for (fem::Index e = 0; e < block.size(); ++e) {
       const auto element = block.element(e);
-      for (const auto& l : local) {
+      for (int f = 0; f < facts.face_count; ++f) {
         std::vector<fem::Index> nodes;
-        for (int i : l) nodes.push_back(element[size_t(i)]);
+        for (int i : facts.face(f)) nodes.push_back(element[size_t(i)]);
         Key key = {-1, -1, -1, -1};
         std::copy_n(nodes.begin(), corners, key.begin());
         for (long a = 1; a < corners; ++a)  // insertion sort of 3 or 4 corners
@@ -44,20 +42,10 @@ std::vector<BoundaryFace> boundary_faces(const fem::Mesh& mesh) {
   return out;
 }
 
-size_t corner_count(fem::FaceType type) {
-  switch (type) {
-    case fem::FaceType::Tri3:
-    case fem::FaceType::Tri6: return 3;
-    case fem::FaceType::Quad4:
-    case fem::FaceType::Quad8: return 4;
-  }
-  fail("face type {} is not a known face type", int(type));
-}
-
 std::vector<std::array<fem::Index, 3>> triangles_of(const BoundaryFace& face) {
   const std::vector<fem::Index>& n = face.nodes;
-  require(n.size() == size_t(fem::nodes_per_face(face.type)), "boundary face {} with {} nodes", fem::name_of(face.type),
-          n.size());
+  const fem::FaceFacts& facts = fem::face_facts(face.type);
+  require(n.size() == size_t(facts.nodes), "boundary face {} with {} nodes", facts.name, n.size());
   switch (face.type) {
     case fem::FaceType::Tri3: return {{n[0], n[1], n[2]}};
     case fem::FaceType::Tri6: return {{n[0], n[3], n[5]}, {n[3], n[1], n[4]}, {n[5], n[4], n[2]}, {n[3], n[4], n[5]}};
@@ -125,7 +113,7 @@ std::vector<std::vector<fem::Index>> outline_edges(const std::vector<BoundaryFac
   std::vector<std::pair<std::pair<fem::Index, fem::Index>, Side>> sides;
   for (const auto& boundary_face : faces) {
     const std::vector<fem::Index>& face = boundary_face.nodes;
-    const size_t nc = corner_count(boundary_face.type);
+    const size_t nc = size_t(fem::face_facts(boundary_face.type).corners);
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell's method over the corners
     for (size_t i = 0; i < nc; ++i)
       normal += Eigen::Vector3d(xyz.row(face[i]).transpose()).cross(Eigen::Vector3d(xyz.row(face[(i + 1) % nc]).transpose()));

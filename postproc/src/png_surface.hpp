@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <cairo.h>
 
+#include "kinetofem/solver/element_traits.hpp"
 #include "kinetofem/solver/mesh.hpp"
 #include "png_canvas.hpp"
 
@@ -30,11 +31,9 @@ struct BoundaryFace {
 // The element faces of `mesh` that belong to one element only.
 std::vector<BoundaryFace> boundary_faces(const fem::Mesh& mesh);
 
-// Corner nodes of a face type: 3 (TRI3, TRI6) or 4 (QUAD4, QUAD8).
-size_t corner_count(fem::FaceType type);
-
 // Flat triangles of a face: linear faces as they are, quadratic ones split at
-// their mid-edge nodes so curved bores stay round.
+// their mid-edge nodes so curved bores stay round. Every face type has its own
+// split (a switch without default: a new face type is a -Wswitch warning here).
 std::vector<std::array<fem::Index, 3>> triangles_of(const BoundaryFace& face);
 
 // The oblique view of the x-y plane (png_plots.hpp): X = x + k z cos a, Y = y + k z sin a,
