@@ -66,13 +66,13 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     }
     a.bore = {attachment.face_set, lift(p), Eigen::Vector3d::UnitZ()};
     if (a.distribution == BoreLoad::BearingPressure)
-      require(joint.type == mech::JointType::Revolute,
+      require(mech::joint_facts(joint.type).bearing_pressure,
               "link '{}': joint '{}': a bearing pressure needs a revolute (pin) joint", link.body,
               joint.name);
     mesh.face_set(attachment.face_set);  // throws naming the sets present
     a.coupling = coupling_on(attachment.face_set);
     has_bearing_pressure_ = has_bearing_pressure_ || a.distribution == BoreLoad::BearingPressure;
-    a.revolute = joint.type == mech::JointType::Revolute;
+    a.revolute = mech::joint_facts(joint.type).out_of_plane_pin;
     joints_.push_back(std::move(a));
   }
   for (const auto& attachment : link.point_masses) {

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "kinetofem/core/error.hpp"
+#include "planar.hpp"
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 
 namespace kinetofem::mech {
@@ -16,28 +17,9 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 
-namespace {
-
-Matrix2d rotation(double theta) {
-  Matrix2d a;
-  a << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
-  return a;
-}
-Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }
-double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-const char* kind_name(ConstraintKind kind) {
-  switch (kind) {
-    case ConstraintKind::Revolute: return "revolute";
-    case ConstraintKind::Prismatic: return "prismatic";
-    case ConstraintKind::Fixed: return "fixed";
-    case ConstraintKind::Chain: return "chain";
-    case ConstraintKind::Drive: return "drive";
-  }
-  return "?";
-}
-
-}  // namespace
+using planar::cross;
+using planar::perp;
+using planar::rotation;
 
 Frame make_frame(const MultibodySystem& system, double t, const VectorXd& q, const VectorXd& qd,
                  const FrameOptions& options, RunSummary* summary) {
@@ -120,11 +102,11 @@ Frame make_frame(const MultibodySystem& system, double t, const VectorXd& q, con
     }
     JointFrame jf;
     jf.name = blk.name;
-    jf.kind = blk.kind;
+    jf.type = blk.joint;
     jf.on_i = make_reaction(blk.body_i, blk.s_i, load.head<3>());
     jf.on_j = make_reaction(blk.body_j, blk.s_j, load.tail<3>());
     frame.joints.push_back(jf);
-    if (blk.kind == ConstraintKind::Chain) {
+    if (blk.joint == JointType::Chain) {
       ChainFrame cf;
       cf.name = blk.name;
       cf.tension_N = lambda(0);
@@ -203,7 +185,7 @@ std::string Results::format_checks() const {
     const Frame& f = frames.back();
     for (const JointFrame& j : f.joints)
       out += fmt::format("  t = {:.4g} s, {} '{}': on {} F = ({:.6g}, {:.6g}) N, M = {:.6g} N m\n", f.t,
-                         kind_name(j.kind), j.name, j.on_j.body, j.on_j.force_world.x(), j.on_j.force_world.y(),
+                         joint_facts(j.type).name, j.name, j.on_j.body, j.on_j.force_world.x(), j.on_j.force_world.y(),
                          j.on_j.moment_Nm);
   }
   return out;

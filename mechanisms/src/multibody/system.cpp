@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "kinetofem/core/error.hpp"
+#include "planar.hpp"
 
 namespace kinetofem::mech {
 
@@ -20,13 +21,9 @@ using Eigen::VectorXd;
 
 namespace {
 
-Matrix2d rotation(double theta) {
-  Matrix2d a;
-  a << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
-  return a;
-}
-Vector2d perp(const Vector2d& v) { return {-v.y(), v.x()}; }
-double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+using planar::cross;
+using planar::perp;
+using planar::rotation;
 
 // A body point at a state: position, rotated offset A s, B s = rot90(A s),
 // velocity, and the body's angular velocity.
@@ -86,30 +83,23 @@ MultibodySystem::MultibodySystem(MultibodyModel model) : model_(std::move(model)
     require(blk.body_i != blk.body_j, "joint '{}': both ends on body '{}'", joint.name, joint.body_i);
     blk.s_i = relative_point(blk.body_i, joint.point_i);
     blk.s_j = relative_point(blk.body_j, joint.point_j);
+    const JointFacts& facts = joint_facts(joint.type);
+    blk.kind = ConstraintKind::Joint;
+    blk.joint = joint.type;
+    blk.rows = facts.rows;
+    blk.length_row.assign(facts.length_row.begin(), facts.length_row.begin() + facts.rows);
     switch (joint.type) {
       case JointType::Revolute:
-        blk.kind = ConstraintKind::Revolute;
-        blk.rows = 2;
-        blk.length_row = {true, true};
         break;
       case JointType::Prismatic:
-        blk.kind = ConstraintKind::Prismatic;
-        blk.rows = 2;
-        blk.length_row = {true, false};
         require(joint.axis_i.norm() > 0.0, "joint '{}': prismatic axis is zero", joint.name);
         blk.axis_i = joint.axis_i.normalized();
         blk.reference = joint.reference.value_or(com_pose(blk.body_j, q0).z() - com_pose(blk.body_i, q0).z());
         break;
       case JointType::Fixed:
-        blk.kind = ConstraintKind::Fixed;
-        blk.rows = 3;
-        blk.length_row = {true, true, false};
         blk.reference = joint.reference.value_or(com_pose(blk.body_j, q0).z() - com_pose(blk.body_i, q0).z());
         break;
       case JointType::Chain: {
-        blk.kind = ConstraintKind::Chain;
-        blk.rows = 1;
-        blk.length_row = {true};
         require(joint.radius_m > 0.0, "joint '{}': chain roller radius must be positive, got {} m", joint.name,
                 joint.radius_m);
         blk.radius_m = joint.radius_m;
@@ -334,46 +324,6 @@ BlockValues MultibodySystem::evaluate(const ConstraintBlock& blk, const VectorXd
   };
 
   switch (blk.kind) {
-    case ConstraintKind::Revolute:
-      revolute_rows();
-      break;
-    case ConstraintKind::Fixed:
-      revolute_rows();
-      angle_row(2);
-      break;
-    case ConstraintKind::Prismatic: {
-      const Vector2d u = rotation(pi.theta) * blk.axis_i, n = perp(u);
-      const Vector2d d = pj.r - pi.r, dd = pj.v - pi.v;
-      out.phi(0) = n.dot(d);
-      out.jac.block<1, 2>(0, 0) = -n.transpose();
-      out.jac(0, 2) = -u.dot(d) - n.dot(pi.bs);
-      out.jac.block<1, 2>(0, 3) = n.transpose();
-      out.jac(0, 5) = n.dot(pj.bs);
-      out.gamma(0) = n.dot(d) * wi * wi + 2.0 * wi * u.dot(dd) + n.dot(pj.as * wj * wj - pi.as * wi * wi);
-      angle_row(1);
-      break;
-    }
-    case ConstraintKind::Chain: {
-      const double r = blk.radius_m, sg = blk.sigma;
-      const Vector2d e = pi.r - pj.r, ed = pi.v - pj.v;
-      const double d2 = e.squaredNorm(), d = std::sqrt(d2);
-      require(d > r, "chain '{}': hinge point within the roller (|A B0| = {} m, r = {} m) at t = {} s", blk.name, d, r,
-              t);
-      const ChainTangent tangent = chain_tangent(pi.r, pj.r, r, sg);
-      const double b = tangent.free_length_m;
-      const double raw = b + r * sg * (pj.theta - tangent.tangent_angle_rad) - blk.reference;
-      const double period = 2.0 * std::numbers::pi * r;
-      out.phi(0) = raw - period * std::round(raw / period);
-      const Vector2d g = (b * e - sg * r * perp(e)) / d2;
-      out.jac.block<1, 2>(0, 0) = g.transpose();
-      out.jac(0, 2) = g.dot(pi.bs);
-      out.jac.block<1, 2>(0, 3) = -g.transpose();
-      out.jac(0, 5) = -g.dot(pj.bs) + sg * r;
-      const double bd = e.dot(ed) / b;
-      const Vector2d gd = (bd * e + b * ed - sg * r * perp(ed)) / d2 - 2.0 * e.dot(ed) / d2 * g;
-      out.gamma(0) = g.dot(pi.as * wi * wi - pj.as * wj * wj) - gd.dot(ed);
-      break;
-    }
     case ConstraintKind::Drive: {
       const CompiledCoordinate c{blk.coordinate, blk.body_i, blk.body_j, blk.s_i, blk.s_j, blk.axis_i};
       const CoordinateValues cv = coordinate(c, q, qd);
@@ -384,6 +334,50 @@ BlockValues MultibodySystem::evaluate(const ConstraintBlock& blk, const VectorXd
       out.gamma(0) = m.s_ddot - cv.quadratic;
       break;
     }
+    case ConstraintKind::Joint:
+      switch (blk.joint) {
+        case JointType::Revolute:
+          revolute_rows();
+          break;
+        case JointType::Fixed:
+          revolute_rows();
+          angle_row(2);
+          break;
+        case JointType::Prismatic: {
+          const Vector2d u = rotation(pi.theta) * blk.axis_i, n = perp(u);
+          const Vector2d d = pj.r - pi.r, dd = pj.v - pi.v;
+          out.phi(0) = n.dot(d);
+          out.jac.block<1, 2>(0, 0) = -n.transpose();
+          out.jac(0, 2) = -u.dot(d) - n.dot(pi.bs);
+          out.jac.block<1, 2>(0, 3) = n.transpose();
+          out.jac(0, 5) = n.dot(pj.bs);
+          out.gamma(0) = n.dot(d) * wi * wi + 2.0 * wi * u.dot(dd) + n.dot(pj.as * wj * wj - pi.as * wi * wi);
+          angle_row(1);
+          break;
+        }
+        case JointType::Chain: {
+          const double r = blk.radius_m, sg = blk.sigma;
+          const Vector2d e = pi.r - pj.r, ed = pi.v - pj.v;
+          const double d2 = e.squaredNorm(), d = std::sqrt(d2);
+          require(d > r, "chain '{}': hinge point within the roller (|A B0| = {} m, r = {} m) at t = {} s", blk.name, d, r,
+                  t);
+          const ChainTangent tangent = chain_tangent(pi.r, pj.r, r, sg);
+          const double b = tangent.free_length_m;
+          const double raw = b + r * sg * (pj.theta - tangent.tangent_angle_rad) - blk.reference;
+          const double period = 2.0 * std::numbers::pi * r;
+          out.phi(0) = raw - period * std::round(raw / period);
+          const Vector2d g = (b * e - sg * r * perp(e)) / d2;
+          out.jac.block<1, 2>(0, 0) = g.transpose();
+          out.jac(0, 2) = g.dot(pi.bs);
+          out.jac.block<1, 2>(0, 3) = -g.transpose();
+          out.jac(0, 5) = -g.dot(pj.bs) + sg * r;
+          const double bd = e.dot(ed) / b;
+          const Vector2d gd = (bd * e + b * ed - sg * r * perp(ed)) / d2 - 2.0 * e.dot(ed) / d2 * g;
+          out.gamma(0) = g.dot(pi.as * wi * wi - pj.as * wj * wj) - gd.dot(ed);
+          break;
+        }
+      }
+      break;
   }
   return out;
 }
@@ -400,11 +394,30 @@ Eigen::Matrix<double, 6, 1> MultibodySystem::gather(int body_i, int body_j, cons
   return out;
 }
 
-VectorXd MultibodySystem::phi(const VectorXd& q, double t) const {
-  VectorXd out(n_rows_);
-  const VectorXd qd = VectorXd::Zero(n_coordinates());
-  for (const ConstraintBlock& blk : blocks_) out.segment(blk.first_row, blk.rows) = evaluate(blk, q, qd, t).phi;
+namespace {
+
+// One part (phi, nu or gamma) of every block's values, stacked over all rows.
+VectorXd stacked(const MultibodySystem& system, const VectorXd& q, const VectorXd& qd, double t,
+                 VectorXd BlockValues::*part) {
+  VectorXd out(system.n_constraints());
+  for (const ConstraintBlock& blk : system.blocks())
+    out.segment(blk.first_row, blk.rows) = system.evaluate(blk, q, qd, t).*part;
   return out;
+}
+
+// The largest |residual| over all rows, angle rows scaled by the characteristic length (m).
+double worst_scaled(const std::vector<ConstraintBlock>& blocks, const VectorXd& residual, double length_m) {
+  double worst = 0.0;
+  for (const ConstraintBlock& blk : blocks)
+    for (int r = 0; r < blk.rows; ++r)
+      worst = std::max(worst, std::abs(residual(blk.first_row + r)) * (blk.length_row[r] ? 1.0 : length_m));
+  return worst;
+}
+
+}  // namespace
+
+VectorXd MultibodySystem::phi(const VectorXd& q, double t) const {
+  return stacked(*this, q, VectorXd::Zero(n_coordinates()), t, &BlockValues::phi);
 }
 
 MatrixXd MultibodySystem::jacobian(const VectorXd& q, double t) const {
@@ -416,36 +429,19 @@ MatrixXd MultibodySystem::jacobian(const VectorXd& q, double t) const {
 }
 
 VectorXd MultibodySystem::nu(const VectorXd& q, double t) const {
-  VectorXd out(n_rows_);
-  const VectorXd qd = VectorXd::Zero(n_coordinates());
-  for (const ConstraintBlock& blk : blocks_) out.segment(blk.first_row, blk.rows) = evaluate(blk, q, qd, t).nu;
-  return out;
+  return stacked(*this, q, VectorXd::Zero(n_coordinates()), t, &BlockValues::nu);
 }
 
 VectorXd MultibodySystem::gamma(const VectorXd& q, const VectorXd& qd, double t) const {
-  VectorXd out(n_rows_);
-  for (const ConstraintBlock& blk : blocks_) out.segment(blk.first_row, blk.rows) = evaluate(blk, q, qd, t).gamma;
-  return out;
+  return stacked(*this, q, qd, t, &BlockValues::gamma);
 }
 
 double MultibodySystem::position_drift_m(const VectorXd& q, double t) const {
-  const VectorXd p = phi(q, t);
-  double worst = 0.0;
-  for (const ConstraintBlock& blk : blocks_)
-    for (int r = 0; r < blk.rows; ++r)
-      worst = std::max(worst, std::abs(p(blk.first_row + r)) *
-                                  (blk.length_row[r] ? 1.0 : model_.characteristic_length_m));
-  return worst;
+  return worst_scaled(blocks_, phi(q, t), model_.characteristic_length_m);
 }
 
 double MultibodySystem::velocity_drift_m_per_s(const VectorXd& q, const VectorXd& qd, double t) const {
-  const VectorXd v = jacobian(q, t) * qd - nu(q, t);
-  double worst = 0.0;
-  for (const ConstraintBlock& blk : blocks_)
-    for (int r = 0; r < blk.rows; ++r)
-      worst = std::max(worst, std::abs(v(blk.first_row + r)) *
-                                  (blk.length_row[r] ? 1.0 : model_.characteristic_length_m));
-  return worst;
+  return worst_scaled(blocks_, jacobian(q, t) * qd - nu(q, t), model_.characteristic_length_m);
 }
 
 VectorXd MultibodySystem::mass_diagonal() const {

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "kinetofem/mechanisms/motion_law.hpp"
+#include "kinetofem/mechanisms/multibody/joint_traits.hpp"
 
 namespace kinetofem::mech {
 
@@ -44,13 +45,7 @@ struct Body {
   bool fixed = false;                        // ground
 };
 
-enum class JointType {
-  Revolute,   // point_i of body_i coincides with point_j of body_j (2 equations)
-  Prismatic,  // point_j slides on the line through point_i along axis_i (body_i frame); no relative rotation (2)
-  Fixed,      // points coincide and the relative angle stays at its assembled value (3)
-  Chain,      // flexible chain hinged to body_i at point_i, wrapped on a roller of radius radius_m
-              // fixed to body_j with centre point_j: free length + r * wrapped angle = const (1)
-};
+// JointType and its facts: joint_traits.hpp.
 
 struct Joint {
   std::string name;

@@ -40,7 +40,7 @@ struct Reaction {
 
 struct JointFrame {
   std::string name;
-  ConstraintKind kind = ConstraintKind::Revolute;
+  JointType type = JointType::Revolute;
   Reaction on_i, on_j;  // load the joint applies on body_i and on body_j
 };
 

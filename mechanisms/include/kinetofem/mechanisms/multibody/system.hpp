@@ -60,12 +60,13 @@ struct EffectiveBody {
   Eigen::Vector2d com_body = Eigen::Vector2d::Zero();
 };
 
-enum class ConstraintKind { Revolute, Prismatic, Fixed, Chain, Drive };
+enum class ConstraintKind { Joint, Drive };
 
 // One block of constraint rows: a joint or a motion drive.
 struct ConstraintBlock {
   std::string name;
-  ConstraintKind kind = ConstraintKind::Revolute;
+  ConstraintKind kind = ConstraintKind::Joint;
+  JointType joint = JointType::Revolute;        // kind == Joint
   int first_row = 0;
   int rows = 0;
   int body_i = -1, body_j = -1;                 // indices into model().bodies
