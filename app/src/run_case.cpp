@@ -26,7 +26,7 @@ using units::kMm;
 using units::kMpa;
 
 RunSummary summary_of(const FeStaticSummary& s) {
-  return {.type = "fe_static", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
+  return {.results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
           .max_displacement_m = s.max_displacement_m,
           .extra = {{"dofs", double(s.dof_count)}, {"reaction_balance", s.reaction_balance}}};
 }
@@ -78,7 +78,7 @@ void add_vibration_results(RunSummary& s, const std::optional<pipeline::Vibratio
 }
 
 RunSummary summary_of(const ManipulatorSummary& s) {
-  RunSummary r{.type = "manipulator", .results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
+  RunSummary r{.results_file = s.results_file, .max_von_mises_pa = s.max_von_mises_pa,
                .max_displacement_m = s.max_displacement_m,
                .extra = {{"static_max_von_mises_mpa", s.static_max_von_mises_pa / kMpa},
                          {"static_max_displacement_mm", s.static_max_displacement_m / kMm},
@@ -92,7 +92,7 @@ RunSummary summary_of(const ManipulatorSummary& s) {
 
 RunSummary summary_of(const LinkageRun& r) {
   const pipeline::PartExtremes pe = pipeline::part_extremes(r.parts);
-  RunSummary s{.type = "linkage", .results_file = r.results_file, .max_von_mises_pa = pe.max_von_mises_pa,
+  RunSummary s{.results_file = r.results_file, .max_von_mises_pa = pe.max_von_mises_pa,
                .max_displacement_m = pe.max_displacement_m,
                .extra = {{"max_abs_drive_effort", r.max_abs_drive_effort}}};
   if (!r.results.frames.empty() && !r.results.frames.front().chains.empty())
@@ -142,8 +142,14 @@ void require_finite_summary(const RunSummary& s) {
   }
 }
 
-RunSummary summary_of(const MechanismCaseSummary& m, const char* type) {
-  return {.type = type, .results_file = m.results_file, .extra = m.values};
+// A mechanism-only case type's key results are its named values.
+RunSummary summary_of(const MechanismCaseSummary& m) { return {.results_file = m.results_file, .extra = m.values}; }
+
+// A case type's CaseType::run: its job, then its key results (the type's name
+// is filled in by run_case).
+template <auto Job>
+RunSummary run_type(const CaseFile& c, const RunOptions& o) {
+  return summary_of(Job(c, o));
 }
 
 }  // namespace
@@ -151,29 +157,24 @@ RunSummary summary_of(const MechanismCaseSummary& m, const char* type) {
 const std::vector<CaseType>& case_types() {
   static const std::vector<CaseType> types = {
       {"fe_static", "one linear-elastic part under static loads", &fe_static_schema,
-       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_fe_static(c, o)); }},
+       &run_type<run_fe_static>},
       {"manipulator",
        "lever-chain or lever manipulator: motion, loads on every link, stress over the motion",
-       &manipulator_schema, [](const CaseFile& c, const RunOptions& o) { return summary_of(run_manipulator(c, o)); }},
+       &manipulator_schema, &run_type<run_manipulator>},
       {"linkage",
        "any planar linkage (bodies, joints, chains, springs, drives): dynamics, reactions, drive efforts, and the "
        "stress of its FE parts (parametric links or CAD files) over the motion",
-       &linkage_schema, [](const CaseFile& c, const RunOptions& o) { return summary_of(run_linkage(c, o)); }},
+       &linkage_schema, &run_type<run_linkage>},
       {"lever_chain_kinematics", "SPEC §1 lever-chain: synthesis, paths of C and H, straightness, speeds for a motion law",
-       &lever_chain_kinematics_schema,
-       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_lever_chain_kinematics(c, o), "lever_chain_kinematics"); }},
+       &lever_chain_kinematics_schema, &run_type<run_lever_chain_kinematics>},
       {"four_bar_study", "SPEC §2 lever-chain vs equivalent four-bar over the same lever motion",
-       &four_bar_study_schema,
-       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_four_bar_study(c, o), "four_bar_study"); }},
+       &four_bar_study_schema, &run_type<run_four_bar_study>},
       {"q_manipulator", "SPEC §4 Q-manipulator: path of H, cusps, isokinematic equivalent",
-       &q_manipulator_schema,
-       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_q_manipulator(c, o), "q_manipulator"); }},
+       &q_manipulator_schema, &run_type<run_q_manipulator>},
       {"spherical_manipulator", "SPEC §5 spherical 3-DoF manipulator: straight-line motion, inverse dynamics, forward check",
-       &spherical_manipulator_schema,
-       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_spherical_manipulator(c, o), "spherical_manipulator"); }},
+       &spherical_manipulator_schema, &run_type<run_spherical_manipulator>},
       {"gripper_study", "SPEC §6 crank-slider gripper: U_V over phi, operating ranges, widest design",
-       &gripper_study_schema,
-       [](const CaseFile& c, const RunOptions& o) { return summary_of(run_gripper_study(c, o), "gripper_study"); }},
+       &gripper_study_schema, &run_type<run_gripper_study>},
   };
   return types;
 }
@@ -203,6 +204,7 @@ int run_case(const RunOptions& options) {
   require_writable_output_folder(options.output_dir);
   Stopwatch clock;
   RunSummary summary = type.run(c, options);
+  summary.type = type.name;
   // Key results for `kinetofem batch`: OUTPUT_DIR/<name>.summary.toml, for every case type.
   summary.name = summary.results_file.stem().string();
   summary.wall_time_s = clock.seconds();

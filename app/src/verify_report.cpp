@@ -14,6 +14,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/version.hpp"
+#include "kinetofem/postproc/markup_text.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 
 namespace kinetofem::app {
@@ -129,19 +130,7 @@ std::string md_cell(const std::string& text) {
   return out;
 }
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string html_escape(const std::string& text) { return post::escape_markup(text, post::MarkupQuotes::Double); }
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
   const auto tmp = std::filesystem::path(path.string() + ".tmp");

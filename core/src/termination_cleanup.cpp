@@ -153,58 +153,59 @@ void install_termination_cleanup() {
   }
 }
 
-RemoveOnTermination::RemoveOnTermination(const std::filesystem::path& path) {
+TerminationEntry::~TerminationEntry() { release(); }
+
+TerminationEntry::TerminationEntry(TerminationEntry&& other) noexcept
+    : slot_(other.slot_), free_slot_(other.free_slot_) {
+  other.slot_ = -1;
+}
+
+TerminationEntry& TerminationEntry::operator=(TerminationEntry&& other) noexcept {
+  if (this != &other) {
+    release();
+    slot_ = other.slot_;
+    free_slot_ = other.free_slot_;
+    other.slot_ = -1;
+  }
+  return *this;
+}
+
+void TerminationEntry::release() noexcept {
+  if (slot_ >= 0) free_slot_(slot_);
+}
+
+namespace {
+
+int claim_path(const std::filesystem::path& path) {
   const std::string text = std::filesystem::absolute(path).string();
   if (text.size() >= PATH_MAX)
     throw std::length_error("termination clean-up: path longer than PATH_MAX: " + text.substr(0, 200));
-  slot_ = claim(g_paths, kMaxRemovedPaths, "temporary paths");
-  PathSlot& slot = g_paths[slot_];
+  const int index = claim(g_paths, kMaxRemovedPaths, "temporary paths");
+  PathSlot& slot = g_paths[index];
   std::memcpy(slot.path, text.c_str(), text.size() + 1);
   slot.owner = ::getpid();
   slot.order = g_next_order.fetch_add(1);
   slot.state.store(kReady, std::memory_order_release);
+  return index;
 }
 
-RemoveOnTermination::~RemoveOnTermination() {
-  if (slot_ >= 0) g_paths[slot_].state.store(kFree, std::memory_order_release);
-}
-
-RemoveOnTermination::RemoveOnTermination(RemoveOnTermination&& other) noexcept : slot_(other.slot_) {
-  other.slot_ = -1;
-}
-
-RemoveOnTermination& RemoveOnTermination::operator=(RemoveOnTermination&& other) noexcept {
-  if (this != &other) {
-    if (slot_ >= 0) g_paths[slot_].state.store(kFree, std::memory_order_release);
-    slot_ = other.slot_;
-    other.slot_ = -1;
-  }
-  return *this;
-}
-
-KillOnTermination::KillOnTermination(pid_t pid) {
-  slot_ = claim(g_children, kMaxKilledChildren, "child processes");
-  ChildSlot& slot = g_children[slot_];
+int claim_child(pid_t pid) {
+  const int index = claim(g_children, kMaxKilledChildren, "child processes");
+  ChildSlot& slot = g_children[index];
   slot.owner = ::getpid();
   slot.pid = pid;
   slot.state.store(kReady, std::memory_order_release);
+  return index;
 }
 
-KillOnTermination::~KillOnTermination() {
-  if (slot_ >= 0) g_children[slot_].state.store(kFree, std::memory_order_release);
-}
+void free_path(int index) { g_paths[index].state.store(kFree, std::memory_order_release); }
+void free_child(int index) { g_children[index].state.store(kFree, std::memory_order_release); }
 
-KillOnTermination::KillOnTermination(KillOnTermination&& other) noexcept : slot_(other.slot_) {
-  other.slot_ = -1;
-}
+}  // namespace
 
-KillOnTermination& KillOnTermination::operator=(KillOnTermination&& other) noexcept {
-  if (this != &other) {
-    if (slot_ >= 0) g_children[slot_].state.store(kFree, std::memory_order_release);
-    slot_ = other.slot_;
-    other.slot_ = -1;
-  }
-  return *this;
-}
+RemoveOnTermination::RemoveOnTermination(const std::filesystem::path& path)
+    : TerminationEntry(claim_path(path), &free_path) {}
+
+KillOnTermination::KillOnTermination(pid_t pid) : TerminationEntry(claim_child(pid), &free_child) {}
 
 }  // namespace kinetofem::core

@@ -94,20 +94,23 @@ double ArmDimensions::volume_m3() const {
   return hub - bores + plate + bracket + pad;
 }
 
-ArmDimensions lever_chain_arm(double c_m, double h_m, double r_m) {
+// The arm of either manipulator: C at c from A, the gripper mount at h above C.
+static ArmDimensions arm_with(double c_m, double h_m, bool with_roller) {
   ArmDimensions d;
-  d.with_roller = true;
+  d.with_roller = with_roller;
   d.length_m = c_m;
   d.gripper_offset_m = h_m;
+  return d;
+}
+
+ArmDimensions lever_chain_arm(double c_m, double h_m, double r_m) {
+  ArmDimensions d = arm_with(c_m, h_m, true);
   d.roller_radius_m = r_m;
   return d;
 }
 
 ArmDimensions lever_coupler(double c_m, double h_m, double r_m) {
-  ArmDimensions d;
-  d.with_roller = false;
-  d.length_m = c_m;
-  d.gripper_offset_m = h_m;
+  ArmDimensions d = arm_with(c_m, h_m, false);
   d.bore_b_offset_m = r_m;
   return d;
 }

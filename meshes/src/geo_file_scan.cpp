@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/text_file.hpp"
 
 namespace kinetofem::meshes {
 
@@ -132,14 +133,6 @@ std::string what_it_does(GeoCommand::Kind kind) {
 
 // ---- files --------------------------------------------------------------------
 
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  require(bool(in), "{}: cannot open the file", file.string());
-  std::stringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
-
 // FNV-1a, 64 bit: a content hash that is the same in every build.
 std::uint64_t fnv1a(const std::string& text) {
   std::uint64_t hash = 1469598103934665603ull;
@@ -202,7 +195,7 @@ class Scanner {
     if (!std::filesystem::is_regular_file(file, error)) return;  // Gmsh reports it
     const std::string name = file.string();
     const auto folder = file.parent_path();
-    for (const auto& command : geo_commands(read_text(file))) {
+    for (const auto& command : geo_commands(read_text_file(file))) {
       const bool reads = command.kind == GeoCommand::Kind::ReadsScript ||
                          command.kind == GeoCommand::Kind::ReadsData;
       if (!reads) {
@@ -315,7 +308,7 @@ std::optional<std::string> geometry_inputs_key(const std::filesystem::path& file
       key += fmt::format("\ninput {}:{} missing", name.size(), name);
       continue;
     }
-    const std::string content = read_text(input);
+    const std::string content = read_text_file(input);
     key += fmt::format("\ninput {}:{} {} {:016x}", name.size(), name, content.size(), fnv1a(content));
   }
   return key;

@@ -16,6 +16,7 @@
 #include "geometry_meshing.hpp"
 #include "gmsh_model.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/text_file.hpp"
 #include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
 
@@ -28,14 +29,6 @@ const std::vector<std::string>& part_file_extensions() {
 }
 
 namespace {
-
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  require(bool(in), "{}: cannot open the file", file.string());
-  std::stringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
 
 bool same_unit(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); }
 
@@ -448,7 +441,7 @@ std::optional<double> cad_file_length_unit_m(const std::filesystem::path& file) 
           file.string());
   std::error_code error;
   require(std::filesystem::is_regular_file(file, error), "{}: no such file", file.string());
-  const std::string text = read_text(file);
+  const std::string text = read_text_file(file);
   return step ? step_file_unit(text) : iges_file_unit(text);
 }
 

@@ -5,26 +5,14 @@
 
 #include <fmt/format.h>
 
+#include "kinetofem/postproc/markup_text.hpp"
 #include "kinetofem/postproc/vtk_node_order.hpp"
 
 namespace kinetofem::post::xdmf {
 
 namespace {
 
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string escaped(const std::string& text) { return escape_markup(text, MarkupQuotes::Any); }
 
 // XDMF AttributeType by component count. A 6-component field (stress, strain in
 // our Voigt order xx, yy, zz, xy, yz, zx) is a "Matrix", not a "Tensor6": the two

@@ -39,39 +39,44 @@ inline constexpr int kChildGraceSeconds = 10;
 inline constexpr int kMaxRemovedPaths = 64;
 inline constexpr int kMaxKilledChildren = 256;
 
+// An entry that a guard below holds in one of the handler's tables: freed
+// (the handler no longer acts on it) when the guard dies, or when it is moved
+// onto another guard. Movable, not copyable.
+class TerminationEntry {
+ public:
+  TerminationEntry(TerminationEntry&& other) noexcept;
+  TerminationEntry& operator=(TerminationEntry&& other) noexcept;
+  TerminationEntry(const TerminationEntry&) = delete;
+  TerminationEntry& operator=(const TerminationEntry&) = delete;
+
+ protected:
+  using FreeSlot = void (*)(int slot);
+  TerminationEntry(int slot, FreeSlot free_slot) : slot_(slot), free_slot_(free_slot) {}
+  ~TerminationEntry();
+
+ private:
+  void release() noexcept;
+  int slot_ = -1;
+  FreeSlot free_slot_ = nullptr;
+};
+
 // While alive, `path` (a file, or a directory that is empty once its
 // registered files are gone: directories are removed with rmdir after files,
 // in reverse order of registration) is removed if the process is ended by one
 // of those signals. Throws std::length_error if the table is full and
 // std::length_error if the path is longer than the table's entries (PATH_MAX).
 // Movable, not copyable.
-class RemoveOnTermination {
+class RemoveOnTermination : private TerminationEntry {
  public:
   explicit RemoveOnTermination(const std::filesystem::path& path);
-  ~RemoveOnTermination();
-  RemoveOnTermination(RemoveOnTermination&& other) noexcept;
-  RemoveOnTermination& operator=(RemoveOnTermination&& other) noexcept;
-  RemoveOnTermination(const RemoveOnTermination&) = delete;
-  RemoveOnTermination& operator=(const RemoveOnTermination&) = delete;
-
- private:
-  int slot_ = -1;
 };
 
 // While alive, the child `pid` gets SIGTERM (and is waited for, bounded by
 // kChildGraceSeconds) if this process is ended by one of those signals.
 // Throws std::length_error if the table is full. Movable, not copyable.
-class KillOnTermination {
+class KillOnTermination : private TerminationEntry {
  public:
   explicit KillOnTermination(pid_t pid);
-  ~KillOnTermination();
-  KillOnTermination(KillOnTermination&& other) noexcept;
-  KillOnTermination& operator=(KillOnTermination&& other) noexcept;
-  KillOnTermination(const KillOnTermination&) = delete;
-  KillOnTermination& operator=(const KillOnTermination&) = delete;
-
- private:
-  int slot_ = -1;
 };
 
 }  // namespace kinetofem::core
