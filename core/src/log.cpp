@@ -22,7 +22,11 @@ void Progress::advance(long done) {
   if (since_report < interval_s_ || done >= total_) return;
   last_report_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double remaining = done > 0 ? elapsed * double(total_ - done) / double(done) : 0.0;
+  if (done < kMinItemsForEstimate || elapsed < kMinSecondsForEstimate) {
+    log_.info("  {} {}/{}: {:.1f} s elapsed", task_, done, total_, elapsed);
+    return;
+  }
+  const double remaining = elapsed * double(total_ - done) / double(done);
   log_.info("  {} {}/{}: {:.1f} s elapsed, ~{:.1f} s left", task_, done, total_, elapsed,
             remaining);
 }

@@ -146,7 +146,7 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
       P.col(k) = all_patterns.col(kept[size_t(k)]);
     }
   }
-  log.info("  link '{}': unit-load superposition: {} load patterns for {} output times", loads.body(), m, steps);
+  log.detail("  link '{}': unit-load superposition: {} load patterns for {} output times", loads.body(), m, steps);
 
   // 3. One block solve and one stress recovery per pattern.
   Stopwatch clock;

@@ -259,7 +259,7 @@ void CholmodSolver::factorize(const SymmetricUpperMatrix& matrix) {
                     stats_.reciprocal_condition, options_.min_reciprocal_condition),
         -1);
   if (log_)
-    log_->info("  CHOLMOD factorize: {:.2f} s, {:.1f} GFLOP/s, rcond estimate {:.2e}",
+    log_->detail("  CHOLMOD factorize: {:.2f} s, {:.1f} GFLOP/s, rcond estimate {:.2e}",
                stats_.factorize_seconds, stats_.factorize_gflops(), stats_.reciprocal_condition);
 }
 
@@ -325,7 +325,7 @@ Eigen::MatrixXd CholmodSolver::solve(const Eigen::MatrixXd& rhs) {
     fail("CHOLMOD solve: relative residual {:.2e} exceeds {:.0e} (ill-conditioned system)", worst,
          options_.max_relative_residual);
   if (log_)
-    log_->info("  CHOLMOD solve: {} right-hand side(s) in {:.3f} s ({:.4f} s each), relative "
+    log_->detail("  CHOLMOD solve: {} right-hand side(s) in {:.3f} s ({:.4f} s each), relative "
                "residual {:.1e}",
                k, stats_.last_solve_seconds, stats_.last_solve_seconds / double(std::max<Eigen::Index>(k, 1)),
                worst);

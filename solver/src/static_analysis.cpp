@@ -26,7 +26,7 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
   check_element_jacobians(mesh);
   stiffness_ = assemble_stiffness(mesh, model.material, dofs_);
   timings_.assembly_seconds = clock.seconds();
-  log_.info("  assembly: {:.2f} s", timings_.assembly_seconds);
+  log_.detail("  assembly: {:.2f} s", timings_.assembly_seconds);
 
   // Choice of the linear solver. Direct and Auto first run CHOLMOD's symbolic
   // analysis, which predicts the factor's size before any numeric work.
@@ -38,7 +38,7 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
         // CHOLMOD's METIS on the DoF graph (+2 %), a 1.6-2x faster analysis.
         NodeGraphOrderingTimes t;
         const GivenOrdering ordering = node_graph_ordering(mesh, dofs_, &t);
-        log_.info("  ordering: METIS on the node graph, graph {:.3f} s, METIS_NodeND {:.3f} s",
+        log_.detail("  ordering: METIS on the node graph, graph {:.3f} s, METIS_NodeND {:.3f} s",
                   t.graph_seconds, t.metis_seconds);
         solver_.analyze(stiffness_.free_free, ordering);
       } else {
@@ -56,7 +56,7 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
       iterative = true;
     }
     if (!iterative && options.method == LinearSolverMethod::Auto)
-      log_.info("  solver: direct (CHOLMOD), the factor fits the memory limit");
+      log_.detail("  solver: direct (CHOLMOD), the factor fits the memory limit");
   }
   if (iterative) {
     amg_ = std::make_unique<AmgSolver>(options.iterative, &log);

@@ -1,8 +1,13 @@
 #pragma once
-// Terminal output of a run: info lines and progress of long steps.
+// Terminal output of a run: info lines, detail lines and progress of long steps.
 //
 // A Log is passed by reference to whatever reports; there is no global logger.
-// Quiet logs (tests) drop info lines. Progress lines show elapsed and
+// The console is for a person: at the Normal level a run prints a line per
+// stage with its progress, time and the numbers that let a user trust it (mesh
+// size, DoFs, factor nnz/flops/time, residuals, drift), then its tables.
+// detail() lines (per-solve solver statistics, orderings, sub-step timings)
+// are printed only at the Verbose level (`kinetofem run -v`).
+// Quiet logs (tests, --quiet) drop both. Progress lines show elapsed and
 // estimated remaining time.
 #include <chrono>
 #include <cstdio>
@@ -14,7 +19,7 @@ namespace kinetofem {
 
 class Log {
  public:
-  enum class Level { Quiet, Normal };
+  enum class Level { Quiet, Normal, Verbose };
   explicit Log(Level level = Level::Normal, std::FILE* stream = stdout)
       : level_(level), stream_(stream) {}
 
@@ -25,7 +30,15 @@ class Log {
     if (level_ == Level::Quiet) return;
     write(fmt::format(format, std::forward<Args>(args)...));
   }
+  // A line for -v only: statistics of one solve, of one sub-step.
+  template <typename... Args>
+  void detail(fmt::format_string<Args...> format, Args&&... args) const {
+    if (level_ != Level::Verbose) return;
+    write(fmt::format(format, std::forward<Args>(args)...));
+  }
   bool is_quiet() const { return level_ == Level::Quiet; }
+  bool is_verbose() const { return level_ == Level::Verbose; }
+  Level level() const { return level_; }
 
  private:
   void write(const std::string& line) const;
@@ -34,12 +47,19 @@ class Log {
 };
 
 // Reports progress of a counted task ("time steps 37/100, 1.2 s elapsed,
-// ~2.0 s left") at most every `interval_s` seconds, and once at the end.
+// ~2.0 s left") at most every `interval_s` seconds, and once at the end. The
+// time left is extrapolated from the items done only once there are at least
+// two of them and a second has passed: the first item often carries the
+// task's setup (a factorization, a first solve) and would make the estimate
+// far too long.
 class Progress {
  public:
   Progress(const Log& log, std::string task, long total, double interval_s = 2.0);
   void advance(long done);  // `done` items of `total` are finished
   void finish();
+
+  static constexpr long kMinItemsForEstimate = 2;
+  static constexpr double kMinSecondsForEstimate = 1.0;
 
  private:
   const Log& log_;
