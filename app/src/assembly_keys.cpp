@@ -5,6 +5,7 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/manipulator_names.hpp"
+#include "kinetofem/mechanisms/multibody/joint_traits.hpp"
 
 namespace kinetofem::app {
 
@@ -12,6 +13,14 @@ namespace {
 
 using Type = KeySpec::Type;
 constexpr long kDefaultStrands = 1;  // a simplex chain
+
+// How the elastic assembly ties the bodies at joint k (its type's row in the joint table).
+mech::AssemblyTie assembly_tie_of(const CaseFile& c, std::size_t k) {
+  const std::string type = c.text_value("joint[].type", k);
+  const auto named = mech::joint_type_named(type);
+  require(named.has_value(), "{} = \"{}\": unknown joint type", c.where("joint[].type", k), type);
+  return mech::joint_facts(*named).assembly_tie;
+}
 // EA is a stiffness in N, not a force: a steel bar of 100 cm^2 has 2e9 N.
 constexpr double kMaxEaN = 1e12;
 constexpr const char* kEaNote = "a plausible axial stiffness EA";
@@ -111,7 +120,7 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
     const std::string type = c.text_value("joint[].type", k);
     for (const char* key : {"joint[].ea_per_strand_n", "joint[].strands"})
       if (c.has(key, k)) {
-        require(type == "chain", "{}: only a chain joint has an axial stiffness (this joint is {})", c.where(key, k), type);
+        require(assembly_tie_of(c, k) == mech::AssemblyTie::ChainSpring, "{}: only a chain joint has an axial stiffness (this joint is {})", c.where(key, k), type);
         require(enabled, "{}: set assembly.enabled = true to use it (the chain's stiffness only enters the elastic assembly)",
                 c.where(key, k));
       }
@@ -131,10 +140,11 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
   // rather than after the motion and the parts' stress (ElasticAssembly checks
   // it again for other callers).
   for (std::size_t k = 0; k < c.count("joint"); ++k)
-    require(c.text_value("joint[].type", k) != "prismatic",
-            "{} = \"prismatic\": joint '{}': the elastic assembly models revolute, fixed and chain joints only "
+    require(assembly_tie_of(c, k) != mech::AssemblyTie::None,
+            "{} = \"{}\": joint '{}': the elastic assembly models {} joints only "
             "(leave assembly.enabled = false for this linkage)",
-            c.where("joint[].type", k), c.text_value("joint[].name", k));
+            c.where("joint[].type", k), c.text_value("joint[].type", k), c.text_value("joint[].name", k),
+            mech::joint_type_list([](const mech::JointFacts& f) { return f.assembly_tie != mech::AssemblyTie::None; }));
   for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
     require(c.text_value("motion_drive[].coordinate", k) == "angle",
             "{} = \"{}\": drive '{}': the elastic assembly models angle drives only (leave assembly.enabled = "
@@ -144,7 +154,7 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
   for (std::size_t k = 0; k < c.count("joint"); ++k) {
-    if (c.text_value("joint[].type", k) != "chain") continue;
+    if (assembly_tie_of(c, k) != mech::AssemblyTie::ChainSpring) continue;
     require(c.has("joint[].ea_per_strand_n", k),
             "{}: chain '{}' needs ea_per_strand_n (its axial stiffness EA, N) for the elastic assembly", c.where("joint[].name", k),
             c.text_value("joint[].name", k));

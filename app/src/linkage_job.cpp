@@ -147,7 +147,7 @@ const std::vector<KeySpec>& linkage_schema() {
     // joints
     s.push_back({.path = "joint", .type = Type::TableArray, .doc = "joints between two bodies"});
     s.push_back({.path = "joint[].name", .type = Type::String, .doc = "joint name", .required = true});
-    s.push_back({.path = "joint[].type", .type = Type::String, .allowed = {"revolute", "prismatic", "fixed", "chain"},
+    s.push_back({.path = "joint[].type", .type = Type::String, .allowed = mech::joint_type_names([](const mech::JointFacts&) { return true; }),
                  .doc = "revolute: points coincide; prismatic: point_j slides on the line through point_i along axis; fixed: welded; "
                         "chain: chain hinged at point_i of body_i wrapped on a roller (radius_mm) centred at point_j of body_j",
                  .required = true});
@@ -289,33 +289,34 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
     mech::Joint j;
     j.name = r.name_key("joint[].name", k, "joint or motion drive", constraint_names);
     const std::string type = c.text_value("joint[].type", k);
-    j.type = type == "revolute" ? mech::JointType::Revolute
-             : type == "prismatic" ? mech::JointType::Prismatic
-             : type == "fixed" ? mech::JointType::Fixed
-                               : mech::JointType::Chain;
+    const auto named = mech::joint_type_named(type);
+    require(named.has_value(), "{} = \"{}\": unknown joint type", c.where("joint[].type", k), type);
+    j.type = *named;
+    const mech::JointFacts& facts = mech::joint_facts(j.type);
     const std::size_t bi = r.body(m.bodies, "joint[].body_i", k), bj = r.body(m.bodies, "joint[].body_j", k);
     require(bi != bj, "{} = \"{}\": a joint connects two different bodies", c.where("joint[].body_j", k), m.bodies[bj].name);
     j.body_i = m.bodies[bi].name;
     j.body_j = m.bodies[bj].name;
     j.point_i = r.point(m.bodies[bi], "joint[].point_i", k);
     j.point_j = r.point(m.bodies[bj], "joint[].point_j", k);
-    auto only_for = [&](const char* key, bool ok, const char* types) {
-      require(ok || !c.has(std::string("joint[].") + key, k), "{}: only for {} joints (this one is {})",
-              c.where(std::string("joint[].") + key, k), types, type);
+    // A key that the joint's type has no use for is a mistake: name the types that take it.
+    auto only_for = [&](const char* key, auto takes) {
+      require(takes(facts) || !c.has(std::string("joint[].") + key, k), "{}: only for {} joints (this one is {})",
+              c.where(std::string("joint[].") + key, k), mech::joint_type_list(takes), type);
     };
-    only_for("axis", j.type == mech::JointType::Prismatic, "prismatic");
-    only_for("radius_mm", j.type == mech::JointType::Chain, "chain");
-    only_for("wrap", j.type == mech::JointType::Chain, "chain");
-    only_for("reference_mm", j.type == mech::JointType::Chain, "chain");
-    only_for("reference_deg", j.type == mech::JointType::Fixed || j.type == mech::JointType::Prismatic, "fixed and prismatic");
+    only_for("axis", [](const mech::JointFacts& f) { return f.has_axis; });
+    only_for("radius_mm", [](const mech::JointFacts& f) { return f.has_roller; });
+    only_for("wrap", [](const mech::JointFacts& f) { return f.has_roller; });
+    only_for("reference_mm", [](const mech::JointFacts& f) { return f.reference == mech::JointReference::Length; });
+    only_for("reference_deg", [](const mech::JointFacts& f) { return f.reference == mech::JointReference::Angle; });
     j.axis_i = read_vector2(c, "joint[].axis", k, 1.0, {1.0, 0.0});
     require(j.axis_i.norm() > 0, "{}: the axis must not be zero", c.where("joint[].axis", k));
-    if (j.type == mech::JointType::Chain) {
+    if (facts.has_roller) {
       require(c.has("joint[].radius_mm", k), "{}: a chain joint needs radius_mm (the roller radius)", c.where("joint[].type", k));
       j.radius_m = c.number("joint[].radius_mm", k);
       j.wrap_ccw = c.text_value("joint[].wrap", k) == "ccw";
-      if (c.has("joint[].reference_mm", k)) j.reference = c.number("joint[].reference_mm", k);
     }
+    if (c.has("joint[].reference_mm", k)) j.reference = c.number("joint[].reference_mm", k);
     if (c.has("joint[].reference_deg", k)) j.reference = c.number("joint[].reference_deg", k);
     m.joints.push_back(j);
   }

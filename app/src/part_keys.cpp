@@ -196,8 +196,9 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     const loads::BoreLoad load = bore_load_named(c.text_value("joint[].load", k));
     const std::string what = fmt::format("joint '{}'", j.name);
     const std::string fi = face("joint[].face_i", k, j.body_i, what), fj = face("joint[].face_j", k, j.body_j, what);
-    if (!fi.empty()) part_for(j.body_i)->attachments.joints.push_back({j.name, fi, j.type == mech::JointType::Chain ? loads::BoreLoad::DistributingCoupling : load});
-    if (!fj.empty()) part_for(j.body_j)->attachments.joints.push_back({j.name, fj, j.type == mech::JointType::Chain ? loads::BoreLoad::DistributingCoupling : load});
+    const loads::BoreLoad used = mech::joint_facts(j.type).always_distributing ? loads::BoreLoad::DistributingCoupling : load;
+    if (!fi.empty()) part_for(j.body_i)->attachments.joints.push_back({j.name, fi, used});
+    if (!fj.empty()) part_for(j.body_j)->attachments.joints.push_back({j.name, fj, used});
   }
   auto drives = [&](const char* table, const auto& list) {
     for (std::size_t k = 0; k < c.count(table); ++k) {

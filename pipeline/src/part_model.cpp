@@ -178,9 +178,9 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
     const auto joint = std::find_if(model.joints.begin(), model.joints.end(),
                                     [&](const mech::Joint& j) { return j.name == attachment.joint; });
     require(joint != model.joints.end(), "{}: the mechanism has no joint '{}'", part.spec.label, attachment.joint);
-    if (joint->type != mech::JointType::Revolute && joint->type != mech::JointType::Chain) continue;
+    const mech::JointFacts& facts = mech::joint_facts(joint->type);
+    if (!(joint->body_i == a.body ? facts.pivot_i : facts.pivot_j)) continue;
     const std::string& point = joint->body_i == a.body ? joint->point_i : joint->point_j;
-    if (joint->type == mech::JointType::Chain && joint->body_i == a.body) continue;  // the hinge end
     points.push_back({joint->name, attachment.face_set, point_on(body, point)});
   }
   // Every other point a load acts at counts for the size check (a part with

@@ -38,7 +38,7 @@ MechanismExtremes mechanism_extremes(const mech::MultibodyModel& m, const mech::
       moment = std::max(moment, std::abs(f.joints[j].on_j.moment_Nm));
     }
     out.text += fmt::format("  joint {:<16} max |reaction| {:.4g} N (t = {:.4g} s){}\n", m.joints[j].name, peak, t_peak,
-                            moment > 0 && m.joints[j].type != mech::JointType::Revolute
+                            moment > 0 && mech::joint_facts(m.joints[j].type).reaction_moment
                                 ? fmt::format("; max |moment| on {} {:.4g} N m", m.joints[j].body_j, moment)
                                 : "");
   }

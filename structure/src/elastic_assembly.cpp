@@ -114,6 +114,8 @@ struct ElasticAssembly::Impl {
   struct JointData {
     int joint = -1;
     mech::JointType type = mech::JointType::Revolute;
+    mech::AssemblyTie tie = mech::AssemblyTie::Rigid;  // the type's row in the joint table
+    int held = 0;                                     // Rigid: components held (joint table)
     int body_i = -1, body_j = -1, if_i = -1, if_j = -1;
     double ea = 0.0, radius = 0.0, sigma = 1.0;  // chain
     Vector2d hinge = Vector2d::Zero();           // chain: hinge point in the ground's frame
@@ -411,7 +413,7 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
 
   for (const auto& c : options.chains) {
     const auto it = std::find_if(model.joints.begin(), model.joints.end(), [&](const mech::Joint& j) {
-      return j.name == c.chain && j.type == mech::JointType::Chain;
+      return j.name == c.chain && mech::joint_facts(j.type).assembly_tie == mech::AssemblyTie::ChainSpring;
     });
     require(it != model.joints.end(), "elastic assembly: options name chain '{}', which the mechanism '{}' lacks",
             c.chain, model.name);
@@ -434,9 +436,12 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     const std::string who = fmt::format("joint '{}'", joint.name);
     jd.body_i = body_index(joint.body_i, who);
     jd.body_j = body_index(joint.body_j, who);
-    require(joint.type != mech::JointType::Prismatic,
-            "elastic assembly: joint '{}' is prismatic, which the elastic assembly does not model", joint.name);
-    if (joint.type == mech::JointType::Chain) {
+    jd.tie = mech::joint_facts(joint.type).assembly_tie;
+    jd.held = mech::joint_facts(joint.type).assembly_held;
+    require(jd.tie != mech::AssemblyTie::None,
+            "elastic assembly: joint '{}' is {}, which the elastic assembly does not model", joint.name,
+            mech::joint_facts(joint.type).name);
+    if (jd.tie == mech::AssemblyTie::ChainSpring) {
       require(
           ground(jd.body_i),
           "elastic assembly: chain '{}' is hinged to body '{}'; the elastic assembly needs the hinge (body_i) on the "
@@ -694,7 +699,7 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
   for (size_t j = 0; j < joints.size(); ++j) {
     const JointData& jd = joints[j];
     const mech::Joint& joint = model.joints[size_t(jd.joint)];
-    if (jd.type == mech::JointType::Chain) {
+    if (jd.tie == mech::AssemblyTie::ChainSpring) {
       const Vector2d hinge =
           pose.origin[size_t(jd.body_i)].head<2>() + pose.R[size_t(jd.body_i)].topLeftCorner<2, 2>() * jd.hinge;
       const Vector3d& A = pose.P[size_t(jd.if_j)];
@@ -717,7 +722,7 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
       spring_name.push_back("chain." + joint.name);
       continue;
     }
-    const int held = jd.type == mech::JointType::Fixed ? 6 : 5;
+    const int held = jd.held;
     Matrix6d T = Matrix6d::Identity();
     if (jd.if_i >= 0 && jd.if_j >= 0) T = transfer(pose.P[size_t(jd.if_j)] - pose.P[size_t(jd.if_i)]);
     for (int c = 0; c < held; ++c) {
@@ -886,7 +891,7 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     jl.type = joint.type;
     jl.body_i = joint.body_i;
     jl.body_j = joint.body_j;
-    if (jd.type == mech::JointType::Chain) {
+    if (jd.tie == mech::AssemblyTie::ChainSpring) {
       const ChainPose& cp = chain_pose[j];
       ChainResult cr;
       cr.chain = joint.name;
@@ -1025,7 +1030,7 @@ void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, co
       auto rz = [&](int k) { return k >= 0 ? x(ou + 6 * k + 5) : 0.0; };
       std::vector<std::pair<double, std::string>> candidates;
       for (const JointData& jd : joints) {
-        if (jd.type != mech::JointType::Revolute) continue;
+        if (jd.tie != mech::AssemblyTie::Rigid || jd.held == 6) continue;  // no free rotation about z
         const mech::Joint& joint = model.joints[size_t(jd.joint)];
         // A force drive (a motor torque) across the joint is a load, not a
         // support: name it, since it is what the user thought held the joint.
