@@ -30,8 +30,9 @@
 # test_assembly_monolithic.cpp 35.8 s -> ~24 s (-30 %; user CPU, coverage off in
 # both). null (a null reference or member call that does not crash at once),
 # vptr, function and every arithmetic, bounds, enum, bool, return and
-# unreachable check stay. Estimated over the tree: ~25 % of the ~2 200 CPU-s
-# left, ~270 s of wall time, and less run time (the checks run at every access).
+# unreachable check stay. Estimated over the tree: ~20 % of the ~2 200 CPU-s
+# left (a lighter test file, test_post_vibration.cpp, gained nothing), ~450
+# CPU-s, ~225 s of wall time; and less run time (the checks ran at every access).
 #   usage: bash scripts/configure-instrumented.sh [TARGET... | --ctest]
 #     (default: all; --ctest: what `ctest -LE large` runs, scripts/ctest-targets.sh:
 #     everything but tests/large, whose compile and link the sanitizer stage
