@@ -93,9 +93,11 @@ int child_threads(int jobs) {
 }
 
 // Starts `kinetofem run` for one run, its output into DIR/<name>.log.
-pid_t spawn_run(const fs::path& exe, const BatchRun& run, const fs::path& dir, int threads, bool trust_part_files) {
+pid_t spawn_run(const fs::path& exe, const BatchRun& run, const fs::path& dir, int threads, bool trust_part_files,
+                bool verbose) {
   std::vector<std::string> args = {exe.string(), "run", run.case_path.string(), "-o", dir.string()};
   if (trust_part_files) args.push_back("--trust-part-files");
+  if (verbose) args.push_back("--verbose");
   for (const auto& o : run.overrides) {
     args.push_back("--set");
     args.push_back(o);
@@ -270,7 +272,7 @@ void run_children(Batch& b, const std::vector<std::size_t>& pending) {
       fs::remove(hash_path(b.dir, run.name), ec);
       fs::remove(run_summary_path(b.dir, run.name), ec);
       try {
-        const pid_t pid = spawn_run(b.exe, run, b.dir, b.threads, b.options.trust_part_files);
+        const pid_t pid = spawn_run(b.exe, run, b.dir, b.threads, b.options.trust_part_files, b.options.verbose);
         running.emplace(pid, Running{index, Stopwatch(), core::KillOnTermination(pid)});
       } catch (const Error& e) {
         b.settle(index, {RunStatus::Failed, 0.0, e.what()});

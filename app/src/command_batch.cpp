@@ -108,6 +108,8 @@ void add_batch_command(CLI::App& app, CommandContext& context) {
                   "files and read outside the case folder (a trust decision; docs/robustness.md)");
   batch->add_flag("--force", options->force, "Rerun every run, also those up to date");
   batch->add_flag("-q,--quiet", options->quiet, "No progress lines and no table on the terminal (the table is still written)");
+  batch->add_flag("-v,--verbose", options->verbose,
+                  "Start every run with --verbose: its log also holds each solve's statistics");
   batch->callback([options, &context] {
     std::vector<BatchRow> rows;
     if (started_by_mpirun()) {

@@ -14,6 +14,8 @@ void add_run_command(CLI::App& app, CommandContext& context) {
   run->add_option("-o,--output-dir", options->output_dir, "Directory for results")
       ->capture_default_str();
   run->add_flag("-q,--quiet", options->quiet, "Print only errors and the summary");
+  run->add_flag("-v,--verbose", options->verbose,
+                "Also print each solve's statistics (CHOLMOD solves and factorizations, orderings, sub-step times)");
   run->add_flag("--trust-part-files", options->trust_part_files,
                 "Let the case's .geo part and geometry files run programs, exit, write files and read outside the "
                 "case folder (a trust decision: only for files you trust; docs/robustness.md)");

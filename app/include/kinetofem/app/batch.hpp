@@ -109,6 +109,7 @@ struct BatchOptions {
   int jobs = 1;                        // runs at once (per MPI rank), capped by kJobsPerThread
   bool force = false;                  // rerun up-to-date runs too
   bool quiet = false;                  // no progress lines
+  bool verbose = false;                // every run started with --verbose (its log gets each solve's statistics)
   bool trust_part_files = false;       // every run started with --trust-part-files (docs/robustness.md, Trust)
   std::filesystem::path executable;    // the kinetofem to start; empty: /proc/self/exe
 };

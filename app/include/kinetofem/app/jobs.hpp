@@ -16,6 +16,7 @@ struct RunOptions {
   std::filesystem::path case_path;
   std::filesystem::path output_dir = "results";
   bool quiet = false;
+  bool verbose = false;  // -v: also each solve's statistics (Log::detail lines)
   std::string command_line;  // recorded in the results' provenance
   std::vector<std::string> overrides;  // --set KEY=VALUE, applied after the case file is read
   // --trust-part-files: the person running kinetofem trusts the case's .geo
@@ -24,9 +25,10 @@ struct RunOptions {
   bool trust_part_files = false;
 };
 
-// The console of a job: silent but for its summary under --quiet.
+// The console of a job: silent but for its summary under --quiet, each
+// solve's statistics too under --verbose (--quiet wins).
 inline Log job_log(const RunOptions& options) {
-  return Log(options.quiet ? Log::Level::Quiet : Log::Level::Normal);
+  return Log(options.quiet ? Log::Level::Quiet : options.verbose ? Log::Level::Verbose : Log::Level::Normal);
 }
 
 // Key results of a finished run, written by each job as
