@@ -466,7 +466,8 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
               run.results.frames.size(), run_case.times.back(), extremes.text.c_str());
   if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
   print_stage_summaries(result);
-  std::printf("%s\n", run.results.format_checks().c_str());
+  // The stage lines printed the dynamics checks already; under --quiet the summary is all there is.
+  if (log.is_quiet()) std::printf("%s\n", run.results.format_checks().c_str());
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", run.results_file.string().c_str(), total.seconds());
   return run;
 }
