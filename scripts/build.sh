@@ -7,7 +7,7 @@
 #                                       libraries and the program, not the 289
 #                                       targets of the tests and benchmarks)
 #     bash scripts/build.sh --ctest     what `ctest -LE large` runs: every target
-#                                       but the benchmarks and the `large` tests
+#                                       but the benchmarks
 #                                       (scripts/ctest-targets.sh; scripts/test.sh)
 #     bash scripts/build.sh             everything, benchmarks included
 #   KINETOFEM_JOBS   parallel build jobs (default: nproc)

@@ -34,9 +34,8 @@
 # left (a lighter test file, test_post_vibration.cpp, gained nothing), ~450
 # CPU-s, ~225 s of wall time; and less run time (the checks ran at every access).
 #   usage: bash scripts/configure-instrumented.sh [TARGET... | --ctest]
-#     (default: all; --ctest: what `ctest -LE large` runs, scripts/ctest-targets.sh:
-#     everything but tests/large, whose compile and link the sanitizer stage
-#     does not need; benchmarks are off in this tree)
+#     (default: all; --ctest: what `ctest -LE large` runs, scripts/ctest-targets.sh;
+#     the same here, as the benchmarks are off in this tree)
 #   BUILD_DIR (default build-asan), KINETOFEM_JOBS (default nproc)
 set -euo pipefail
 cd "$(dirname "$0")/.."

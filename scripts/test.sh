@@ -13,9 +13,9 @@
 #
 # What each stage builds: only what its ctest runs (scripts/ctest-targets.sh):
 # not the benchmarks (bench/: run by hand, no test runs them; about 25 s of
-# compile on 2 cores in the release tree, off anyway in build-asan/) nor the
-# `large` tests (ctest -LE large leaves them out). scripts/main.sh built the
-# program only; this builds the rest that the tests need.
+# compile on 2 cores in the release tree, off anyway in build-asan/).
+# scripts/main.sh built the program only; this builds the rest that the tests
+# need.
 #
 # CI time (.ci/run runs exactly this; CI's limit 90 min, the project's target
 # 45): the last clean-clone run on the 2-core machine (2026-12-03) took 1133 s
@@ -23,7 +23,7 @@
 # 40 s fuzz: 3307 s, 55 min. The cuts, each explained in the script named, and
 # their estimates (from that run's .ninja_log and per-test times; not yet
 # measured as a whole run):
-#   release     no benchmarks, no `large` tests built (above): -15 s. The
+#   release     no benchmarks built (above): -13 s. The
 #               ParaView test now runs (it was skipped: no ParaView): +45 s
 #               (90 s of one of the two jobs).                     ~1163 s
 #   sanitizers  build: libFuzzer coverage only where the fuzz inputs go, UBSan
