@@ -100,11 +100,11 @@ void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>&
                    : std::string("case: none given");
     if (part.spec.mass_from_mesh) {
       loads::assign_mass_properties(*it, part.model);
-      log.info("  body '{}' mass properties: {} (used); {}", it->name, mesh_line, case_line);
+      log.detail("  body '{}' mass properties: {} (used); {}", it->name, mesh_line, case_line);
     } else {
       require(it->mass_kg > 0 && it->inertia_kgm2 > 0,
               "{}: mass_properties = \"case\" needs the body's mass_kg > 0 and inertia_kgm2 > 0", part.spec.label);
-      log.info("  body '{}' mass properties: {} (used); {}", it->name, case_line, mesh_line);
+      log.detail("  body '{}' mass properties: {} (used); {}", it->name, case_line, mesh_line);
     }
   }
 }

@@ -137,7 +137,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.iterative_solver = env.iterative_solver;
   ps.solver_summary = env.solver_summary;
   const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
-  log.info("  {}: {} right-hand sides for {} output times{}", ps.body, ps.right_hand_sides, frames.size(),
+  log.detail("  {}: {} right-hand sides for {} output times{}", ps.body, ps.right_hand_sides, frames.size(),
            ps.superposed ? " (unit-load superposition)" : " (step by step)");
   log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
            "loads in equilibrium to {:.1e}, support reactions {:.1e}; out-of-plane moment on the pins up to {:.3g} N m",

@@ -527,7 +527,7 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
 void ElasticAssembly::Impl::solve_interface_columns(PartData& part) {
   fem::FeModel& fe = part.supported;
   const fem::Index dofs = 3 * fe.mesh.node_count();
-  log.info("elastic assembly: part '{}': {} nodes, {} interfaces", part.body, fe.mesh.node_count(),
+  log.detail("elastic assembly: part '{}': {} nodes, {} interfaces", part.body, fe.mesh.node_count(),
            part.interfaces.size());
   if (part.given_analysis) {
     part.analysis = part.given_analysis;
