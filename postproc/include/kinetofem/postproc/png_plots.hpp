@@ -68,6 +68,7 @@
 #include <vector>
 
 #include "kinetofem/solver/mesh.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
 
 namespace kinetofem::post {
 
@@ -84,8 +85,8 @@ inline constexpr double kObliqueDepth = 0.5;
 inline constexpr double kObliqueAngleDeg = 40.0;
 
 struct StressPictureOptions : PictureOptions {
-  std::string field = "von_mises";  // scalar, Pa
-  std::string displacement_field = "displacement";
+  std::string field = layout::kVonMises;  // scalar, Pa
+  std::string displacement_field = layout::kDisplacement;
   double deformation_scale = 0.0;    // 0: automatic (a "nice" 1/2/5 x 10^k factor)
   double oblique_depth = kObliqueDepth;
   double oblique_angle_deg = kObliqueAngleDeg;
