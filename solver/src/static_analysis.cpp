@@ -18,7 +18,7 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
             model.supports),
       solver_(options.direct, &log) {
   const Mesh& mesh = model.mesh;
-  log_.info("  FE model: {} nodes, {} elements, {} DoFs ({} free, {} prescribed)",
+  log_.detail("  FE model: {} nodes, {} elements, {} DoFs ({} free, {} prescribed)",
             mesh.node_count(), mesh.element_count(), dofs_.dof_count(), dofs_.free_count(),
             dofs_.prescribed_count());
   require(dofs_.free_count() > 0, "FE model has no free DoFs: every node is supported");

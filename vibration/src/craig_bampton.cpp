@@ -449,6 +449,11 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
     log->detail("{}", format_check(out));
   else if (log)
     log->info("{}", format_check(out));
+  if (log)
+    log->detail("  time: K and M {:.2f} s, constraint modes {:.2f} s, fixed-interface modes {:.2f} s, residual "
+                "vectors {:.2f} s, projection {:.2f} s",
+                out.phase_seconds[0], out.phase_seconds[1], out.phase_seconds[2], out.phase_seconds[3],
+                out.phase_seconds[4]);
   return out;
 }
 
@@ -486,10 +491,6 @@ std::string format_check(const CraigBamptonModel& m) {
       m.cutoff_hz, m.mode_count, m.mode_count ? m.normal_frequency_hz[0] : 0.0,
       m.mode_count ? m.normal_frequency_hz[m.mode_count - 1] : 0.0, m.first_dropped_hz,
       m.first_dropped_hz / m.cutoff_hz, m.first_dropped_hz > m.cutoff_hz ? "holds" : "FAILS");
-  text += fmt::format("  time: K and M {:.2f} s, constraint modes {:.2f} s, fixed-interface modes {:.2f} s, residual "
-                      "vectors {:.2f} s, projection {:.2f} s\n",
-                      m.phase_seconds[0], m.phase_seconds[1], m.phase_seconds[2], m.phase_seconds[3],
-                      m.phase_seconds[4]);
   text += fmt::format("  checks: |Phi^T K Psi| / max|K_r| = {:.1e}, interface constraint {:.1e}",
                       m.coupling_stiffness_check, m.constraint_check);
   return text;
