@@ -30,7 +30,7 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/test
 # the linkage-vs-preset comparison, the verify suite a second time from a
 # copied program, a kill-timing test, ParaView's own Python reading files,
 # three of the four superposition-vs-step-by-step comparisons (the lever-chain
-# one stays: both paths instrumented) and the node-graph ordering against
+# one stayed until 2026-12-03: below) and the node-graph ordering against
 # CHOLMOD's METIS (every instrumented solve uses that ordering), and the
 # vibration's monolithic reference (AssemblyModes.*: dense eigen-solves of
 # 1 200-1 300 DoFs in the test itself; the reduced assembly's code runs

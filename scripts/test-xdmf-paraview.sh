@@ -30,9 +30,9 @@
 #
 # Exit 0: passed; 1: failed; 77 (ctest: skipped): no pvpython. PVPYTHON picks
 # another pvpython. scripts/test.sh installs ParaView (scripts/setup-test-deps.sh:
-# Debian paraview, python3-paraview, xvfb), so CI runs this test; where pvpython
-# is missing on purpose, KINETOFEM_REQUIRE_PARAVIEW=1 (set by test.sh) turns the
-# skip into a failure.
+# Debian paraview, python3-paraview, xvfb), so CI runs this test, and sets
+# KINETOFEM_REQUIRE_PARAVIEW=1, which turns a missing pvpython from a skip into
+# a failure there.
 set -uo pipefail
 if (($# != 3)); then
   echo "usage: $0 UNIT_POSTPROC KINETOFEM WORK_DIR" >&2
