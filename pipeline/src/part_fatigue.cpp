@@ -110,17 +110,17 @@ PartFatigue assess_part_fatigue(const Part& part, const PartStressHistory& histo
   Stopwatch clock;
   const fem::Mesh& mesh = part.model.mesh;
   const fem::Index nodes = mesh.node_count();
-  require(!history.empty(), "{}: fatigue: no stress history over the motion", part.spec.label);
-  require(history.nodes() == nodes, "{}: fatigue: the stress history has {} nodes, the mesh {}", part.spec.label,
+  require(!history.empty(), "{}: fatigue: no stress history over the motion", part.label);
+  require(history.nodes() == nodes, "{}: fatigue: the stress history has {} nodes, the mesh {}", part.label,
           history.nodes(), nodes);
   require(std::isfinite(settings.design_cycles) && settings.design_cycles >= 1.0,
-          "{}: fatigue: the service life is {} work cycles, less than one", part.spec.label, settings.design_cycles);
+          "{}: fatigue: the service life is {} work cycles, less than one", part.label, settings.design_cycles);
   require(std::isfinite(settings.cycle_rate_per_s) && settings.cycle_rate_per_s > 0.0,
-          "{}: fatigue: the cycle rate {} 1/s must be positive", part.spec.label, settings.cycle_rate_per_s);
+          "{}: fatigue: the cycle rate {} 1/s must be positive", part.label, settings.cycle_rate_per_s);
 
   // The details: 0 is the part default, then the sets of this part in order.
   std::vector<Detail> details;
-  details.push_back({curve_of(settings.detail_category_mpa, settings, part.spec.label + ": fatigue: the part default"),
+  details.push_back({curve_of(settings.detail_category_mpa, settings, part.label + ": fatigue: the part default"),
                      settings.mean_stress, "part default"});
   std::vector<int> detail_of(size_t(nodes), 0);
   for (const auto& d : settings.details) {
@@ -187,7 +187,7 @@ PartFatigue assess_part_fatigue(const Part& part, const PartStressHistory& histo
           r.plane_normal.row(i) = nf.normal.transpose();
         } catch (const Error& e) {
 #pragma omp critical(kinetofem_part_fatigue_error)
-          if (!error) error = fmt::format("{}: fatigue at node {}: {}", part.spec.label, i, e.what());
+          if (!error) error = fmt::format("{}: fatigue at node {}: {}", part.label, i, e.what());
         }
       }
     }

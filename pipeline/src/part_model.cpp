@@ -66,7 +66,8 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
   for (const auto& spec : specs) {
     Stopwatch clock;
     Part part;
-    part.spec = spec;
+    part.label = spec.label;
+    part.attachments = spec.attachments;
     part.model.mesh = mesh_of(spec, options);
     place_mesh(part.model.mesh, spec.placement);
     part.model.material = material;
@@ -78,17 +79,21 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
              3 * mesh.node_count(), part.mass.mass_kg, part.meshing_seconds);
     parts.push_back(std::move(part));
   }
-  for (auto& part : parts) part.spec.attachments.model = &part.model;
+  for (auto& part : parts) part.attachments.model = &part.model;
   return parts;
 }
 
-void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log) {
-  for (const auto& part : parts) {
+void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log,
+                           const std::vector<PartSpec>& specs) {
+  require(specs.empty() || specs.size() == parts.size(), "mass properties: {} part specs for {} parts", specs.size(),
+          parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const Part& part = parts[k];
     auto it = std::find_if(model.bodies.begin(), model.bodies.end(),
                            [&](const mech::Body& b) { return b.name == part.body(); });
-    require(it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.spec.label, part.body());
+    require(it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.label, part.body());
     require(!it->fixed, "{}: body '{}' is the ground, which is rigid here: give the part to a moving body",
-            part.spec.label, part.body());
+            part.label, part.body());
     const fem::MassProperties& mp = part.mass;
     const std::string mesh_line =
         fmt::format("mesh {:.4f} kg, centre of mass ({:.2f}, {:.2f}) mm, I_zz {:.5g} kg m^2", mp.mass_kg,
@@ -98,12 +103,12 @@ void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>&
         case_given ? fmt::format("case {:.4f} kg, centre of mass ({:.2f}, {:.2f}) mm, I_zz {:.5g} kg m^2", it->mass_kg,
                                  it->com_body.x() / kMm, it->com_body.y() / kMm, it->inertia_kgm2)
                    : std::string("case: none given");
-    if (part.spec.mass_from_mesh) {
+    if (specs.empty() || specs[k].mass_from_mesh) {
       loads::assign_mass_properties(*it, part.model);
       log.detail("  body '{}' mass properties: {} (used); {}", it->name, mesh_line, case_line);
     } else {
       require(it->mass_kg > 0 && it->inertia_kgm2 > 0,
-              "{}: mass_properties = \"case\" needs the body's mass_kg > 0 and inertia_kgm2 > 0", part.spec.label);
+              "{}: mass_properties = \"case\" needs the body's mass_kg > 0 and inertia_kgm2 > 0", part.label);
       log.detail("  body '{}' mass properties: {} (used); {}", it->name, case_line, mesh_line);
     }
   }
@@ -140,9 +145,9 @@ void require_face_set(const Part& part, const std::string& face_set, const std::
   if (mesh.face_sets.contains(face_set)) return;
   if (mesh.element_sets.contains(face_set) || mesh.node_sets.contains(face_set))
     fail("{}: {} acts through '{}', which is not a surface of the part (it is a {} group); surface sets: {}",
-         part.spec.label, user, face_set, mesh.element_sets.contains(face_set) ? "volume" : "curve or point",
+         part.label, user, face_set, mesh.element_sets.contains(face_set) ? "volume" : "curve or point",
          sets_of(mesh));
-  fail("{}: {} acts through face set '{}', which the part does not have (it has: {})", part.spec.label, user, face_set,
+  fail("{}: {} acts through face set '{}', which the part does not have (it has: {})", part.label, user, face_set,
        sets_of(mesh));
 }
 
@@ -156,10 +161,10 @@ Eigen::Vector2d point_on(const mech::Body& body, const std::string& point) {
 }  // namespace
 
 void check_part_against_model(const Part& part, const mech::MultibodyModel& model) {
-  const loads::LinkDefinition& a = part.spec.attachments;
+  const loads::LinkDefinition& a = part.attachments;
   const auto body_it = std::find_if(model.bodies.begin(), model.bodies.end(),
                                     [&](const mech::Body& b) { return b.name == a.body; });
-  require(body_it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.spec.label, a.body);
+  require(body_it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.label, a.body);
   const mech::Body& body = *body_it;
   for (const auto& j : a.joints) require_face_set(part, j.face_set, fmt::format("joint '{}'", j.joint));
   for (const auto& m : a.point_masses) require_face_set(part, m.face_set, fmt::format("point mass '{}'", m.point_mass));
@@ -177,7 +182,7 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
   for (const auto& attachment : a.joints) {
     const auto joint = std::find_if(model.joints.begin(), model.joints.end(),
                                     [&](const mech::Joint& j) { return j.name == attachment.joint; });
-    require(joint != model.joints.end(), "{}: the mechanism has no joint '{}'", part.spec.label, attachment.joint);
+    require(joint != model.joints.end(), "{}: the mechanism has no joint '{}'", part.label, attachment.joint);
     const mech::JointFacts& facts = mech::joint_facts(joint->type);
     if (!(joint->body_i == a.body ? facts.pivot_i : facts.pivot_j)) continue;
     const std::string& point = joint->body_i == a.body ? joint->point_i : joint->point_j;
@@ -210,7 +215,7 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
     require(extent > 0.5 * span && extent < 20.0 * span,
             "{}: the part spans {:.4g} mm in the plane but its load points '{}' and '{}' are {:.4g} mm apart: is its "
             "length unit right? (expected a part of about {:.4g} mm or more)",
-            part.spec.label, extent / kMm, from, to, span / kMm, span / kMm);
+            part.label, extent / kMm, from, to, span / kMm, span / kMm);
 
   // Placement: each joint point must lie in its bore (the face set's circle).
   for (const auto& p : points) {
@@ -220,7 +225,7 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
             "{}: joint '{}' at ({:.3f}, {:.3f}) mm (body frame) lies {:.3f} mm from the centre of its face set '{}' "
             "(radius {:.3f} mm, centre ({:.3f}, {:.3f}) mm): check the part's placement (offset_mm, angle_deg) or the "
             "face set",
-            part.spec.label, p.joint, p.at.x() / kMm, p.at.y() / kMm, distance / kMm, p.face_set, c.radius_m / kMm,
+            part.label, p.joint, p.at.x() / kMm, p.at.y() / kMm, distance / kMm, p.face_set, c.radius_m / kMm,
             c.centre.x() / kMm, c.centre.y() / kMm);
   }
 }

@@ -41,7 +41,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
                                      const std::vector<mech::Frame>& motion, const std::optional<mech::Frame>& static_pose,
                                      post::ResultsWriter& writer, const loads::LinkStressOptions& options,
                                      const Log& log, const SupportedPart* factorized, PartStressHistory* history) {
-  require(!motion.empty(), "{}: no output times to analyse", part.spec.label);
+  require(!motion.empty(), "{}: no output times to analyse", part.label);
   std::unique_ptr<SupportedPart> own;
   if (!factorized) {
     own = std::make_unique<SupportedPart>(part, options.solver, log);
@@ -49,7 +49,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   }
   const fem::FeModel& supported = factorized->model();
 
-  loads::LinkDefinition definition = part.spec.attachments;
+  loads::LinkDefinition definition = part.attachments;
   definition.model = &supported;
   const loads::LinkLoads link_loads(definition, model);
 
@@ -65,7 +65,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   // Fields are written at the output times asked for (all by default) and
   // always for the static study; the envelope covers every output time.
   require(options.callback_steps.empty() || options.callback_steps.size() == motion.size(),
-          "{}: the field output mask has {} entries for {} output times", part.spec.label,
+          "{}: the field output mask has {} entries for {} output times", part.label,
           options.callback_steps.size(), motion.size());
   if (!stress_options.callback_steps.empty() && static_pose) stress_options.callback_steps.push_back(true);
   // The fatigue stage's history: step by step, every output time's stress

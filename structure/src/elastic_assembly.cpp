@@ -1,7 +1,7 @@
 #include "kinetofem/structure/elastic_assembly.hpp"
 
 #include "kinetofem/structure/rigid_bore.hpp"
-#include "rigid_motion.hpp"
+#include "kinetofem/structure/rigid_motion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -150,8 +150,8 @@ struct ElasticAssembly::Impl {
   std::vector<PointData> points;
   AssemblyStatistics stats;
 
-  Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l,
-       const std::vector<fem::LinearStaticAnalysis*>& factorized);
+  Impl(const std::vector<Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l,
+       const std::vector<fem::LinearStaticAnalysis*>& factorized, bool set_up_now);
 
   int body_index(const std::string& name, const std::string& who) const {
     for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -337,8 +337,20 @@ struct ElasticAssembly::Impl {
                                             const std::vector<std::string>& row_owner) const;
 };
 
-ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech::MultibodyModel& m, AssemblyOptions o,
-                            const Log& l, const std::vector<fem::LinearStaticAnalysis*>& factorized)
+namespace {
+
+// A factorization lent by the caller must be of this very supported model.
+void require_factor_of(const fem::FeModel& supported, const fem::LinearStaticAnalysis& factor, const std::string& label) {
+  const fem::FeModel& theirs = factor.model();
+  bool same = theirs.mesh.node_count() == supported.mesh.node_count() && theirs.supports.size() == supported.supports.size();
+  for (size_t k = 0; same && k < theirs.supports.size(); ++k) same = theirs.supports[k].nodes == supported.supports[k].nodes;
+  require(same, "{}: the factorization given is not of this part with its 3-2-1 support", label);
+}
+
+}  // namespace
+
+ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::MultibodyModel& m, AssemblyOptions o,
+                            const Log& l, const std::vector<fem::LinearStaticAnalysis*>& factorized, bool set_up_now)
     : log(l), options(std::move(o)), model(m) {
   require(factorized.empty() || factorized.size() == given.size(),
           "elastic assembly: {} factorizations given for {} parts", factorized.size(), given.size());
@@ -354,10 +366,10 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
 
   // Parts: the 3-2-1-supported stiffness, factorized once; the loads without
   // the joints (and the motion drives, held by the structure).
-  for (const pipeline::Part& part : given) {
+  for (const Part& part : given) {
     auto data = std::make_unique<PartData>();
     data->body = part.body();
-    data->label = part.spec.label.empty() ? fmt::format("part '{}'", part.body()) : part.spec.label;
+    data->label = part.label.empty() ? fmt::format("part '{}'", part.body()) : part.label;
     data->body_index = body_index(part.body(), data->label);
     require(!model.bodies[size_t(data->body_index)].fixed,
             "{}: body '{}' is the ground, which is rigid and fixed here: give the part to a moving body", data->label,
@@ -365,19 +377,13 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
     require(part_of_body[size_t(data->body_index)] < 0, "{}: body '{}' has two parts", data->label, data->body);
     part_of_body[size_t(data->body_index)] = int(parts.size());
     data->supported = part.model;
-    data->attachments = part.spec.attachments;
+    data->attachments = part.attachments;
     data->attachments.body = part.body();
     std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
     for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
     data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
     if (!factorized.empty() && factorized[parts.size()]) {
-      // A factorization made before must be of this very supported model.
-      const fem::FeModel& theirs = factorized[parts.size()]->model();
-      bool same = theirs.mesh.node_count() == data->supported.mesh.node_count() &&
-                  theirs.supports.size() == data->supported.supports.size();
-      for (size_t k = 0; same && k < theirs.supports.size(); ++k)
-        same = theirs.supports[k].nodes == data->supported.supports[k].nodes;
-      require(same, "{}: the factorization given is not of this part with its 3-2-1 support", data->label);
+      require_factor_of(data->supported, *factorized[parts.size()], data->label);
       data->given_analysis = factorized[parts.size()];
     }
     for (const auto& a : data->attachments.joints) {
@@ -518,12 +524,12 @@ ElasticAssembly::Impl::Impl(const std::vector<pipeline::Part>& given, const mech
   stats.rigid_bodies = moving_count - int(parts.size());
   stats.interfaces = int(interfaces.size());
   stats.setup_seconds = clock.seconds();
-  if (!options.defer_part_setup)
+  if (set_up_now)
     for (auto& part : parts) set_up_part(*part);
 }
 
-// The part's factorization (given, or made here; made again if it was
-// freed), its interface columns G, Z_G = K_s^-1 G and flexibility G^T Z_G.
+// The part's factorization (lent by the caller, or made and owned here), its
+// interface columns G, Z_G = K_s^-1 G and flexibility G^T Z_G.
 void ElasticAssembly::Impl::solve_interface_columns(PartData& part) {
   fem::FeModel& fe = part.supported;
   const fem::Index dofs = 3 * fe.mesh.node_count();
@@ -531,11 +537,13 @@ void ElasticAssembly::Impl::solve_interface_columns(PartData& part) {
            part.interfaces.size());
   if (part.given_analysis) {
     part.analysis = part.given_analysis;
+    require(part.analysis->is_factorized(), "{}: the factorization lent to the elastic assembly is not factorized",
+            part.label);
   } else {
     part.own_analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
     part.analysis = part.own_analysis.get();
+    part.analysis->factorize();  // a no-op unless the solver options defer it
   }
-  part.analysis->factorize();  // a no-op unless deferred or freed
   const Eigen::Index m = Eigen::Index(part.interfaces.size());
   if (options.coupling == BoreCoupling::RigidBore) {
     std::vector<RigidBoreInterface> bores;
@@ -570,18 +578,14 @@ void ElasticAssembly::Impl::solve_interface_columns(PartData& part) {
   if (!part.given_analysis) stats.factorize_seconds += part.analysis->solver_statistics().factorize_seconds;
 }
 
-// Per part: factorization, interface columns, Z_G, flexibility, the load
-// patterns; then the factor freed when nothing later needs it.
+// Per part: interface columns, Z_G, flexibility, the load patterns. A lent
+// factor is the lender's to free (solves_with_factor says whether the poses
+// still need it).
 void ElasticAssembly::Impl::set_up_part(PartData& data) {
   require(!data.set_up, "elastic assembly: {} is set up already", data.label);
   Stopwatch clock;
   solve_interface_columns(data);
   if (options.superpose_loads && data.loads->superposable()) set_up_load_patterns(data);
-  if (options.release_factors && data.superposed) {
-    // No later solve: a pose costs products with the solved columns only.
-    data.analysis->release_factor();
-    log.info("elastic assembly: part '{}': columns solved, its factor freed", data.body);
-  }
   data.set_up = true;
   stats.setup_seconds += clock.seconds();
 }
@@ -1093,10 +1097,15 @@ void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, co
 
 // ---------------------------------------------------------------------------
 
-ElasticAssembly::ElasticAssembly(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
+ElasticAssembly::ElasticAssembly(const std::vector<Part>& parts, const mech::MultibodyModel& model,
                                  AssemblyOptions options, const Log& log,
                                  const std::vector<fem::LinearStaticAnalysis*>& factorized)
-    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log, factorized)) {}
+    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log, factorized, true)) {}
+
+ElasticAssembly::ElasticAssembly(const std::vector<Part>& parts, const mech::MultibodyModel& model,
+                                 AssemblyOptions options, const Log& log, PartsLentOneByOne)
+    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log, std::vector<fem::LinearStaticAnalysis*>{},
+                                   false)) {}
 ElasticAssembly::~ElasticAssembly() = default;
 ElasticAssembly::ElasticAssembly(ElasticAssembly&&) noexcept = default;
 ElasticAssembly& ElasticAssembly::operator=(ElasticAssembly&&) noexcept = default;
@@ -1245,15 +1254,21 @@ InterfaceStructure ElasticAssembly::interface_structure(const mech::Frame& frame
 
 void ElasticAssembly::Impl::require_set_up() const {
   for (const auto& p : parts)
-    require(p->set_up, "elastic assembly: {} is not set up yet (AssemblyOptions::defer_part_setup: call set_up_part)",
+    require(p->set_up, "elastic assembly: {} is not set up yet (call set_up_part with its factor)",
             p->label);
 }
 
-void ElasticAssembly::set_up_part(const std::string& body) {
+void ElasticAssembly::set_up_part(const std::string& body, fem::LinearStaticAnalysis& factor) {
   for (auto& p : impl_->parts)
-    if (p->body == body) return impl_->set_up_part(*p);
+    if (p->body == body) {
+      require_factor_of(p->supported, factor, p->label);
+      p->given_analysis = &factor;
+      return impl_->set_up_part(*p);
+    }
   fail("elastic assembly: body '{}' has no elastic part", body);
 }
+
+bool ElasticAssembly::solves_with_factor(const std::string& body) const { return !impl_->part_of(body).superposed; }
 
 bool ElasticAssembly::is_set_up() const {
   return std::all_of(impl_->parts.begin(), impl_->parts.end(), [](const auto& p) { return p->set_up; });

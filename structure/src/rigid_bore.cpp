@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "kinetofem/core/error.hpp"
-#include "rigid_motion.hpp"
+#include "kinetofem/structure/rigid_motion.hpp"
 
 namespace kinetofem::structure {
 

@@ -63,8 +63,8 @@ inline Part beam_part(const std::string& body, loads::LinkDefinition attachments
   Part part;
   attachments.body = body;
   attachments.model = nullptr;  // set by the stages that need it (a copied Part would dangle)
-  part.spec.attachments = std::move(attachments);
-  part.spec.label = "part '" + body + "' (test beam)";
+  part.attachments = std::move(attachments);
+  part.label = "part '" + body + "' (test beam)";
   part.model.mesh = beam_mesh(size);
   part.model.material = steel();
   part.mass = fem::mass_properties(part.model.mesh, part.model.material);

@@ -144,13 +144,14 @@ TEST(ApplyMassProperties, PlacedMeshMovesTheCentreOfMass) {
 
 TEST(ApplyMassProperties, CaseValuesAreKeptWhenMassDoesNotComeFromTheMesh) {
   Part part = test::beam_part("beam", test::beam_pendulum_attachments());
-  part.spec.mass_from_mesh = false;
+  PartSpec spec;
+  spec.mass_from_mesh = false;
   mech::MultibodyModel model = test::beam_pendulum();
   mech::Body& body = *body_named(model, "beam");
   body.mass_kg = 3.25;
   body.inertia_kgm2 = 0.0421;
   body.com_body = {0.11, 0.002};
-  apply_mass_properties(model, {part}, Log::quiet());
+  apply_mass_properties(model, {part}, Log::quiet(), {spec});
   EXPECT_EQ(body.mass_kg, 3.25);
   EXPECT_EQ(body.inertia_kgm2, 0.0421);
   EXPECT_EQ(body.com_body, Eigen::Vector2d(0.11, 0.002));
@@ -158,10 +159,11 @@ TEST(ApplyMassProperties, CaseValuesAreKeptWhenMassDoesNotComeFromTheMesh) {
 
 TEST(ApplyMassProperties, CaseValuesMustBeGivenWhenMassDoesNotComeFromTheMesh) {
   Part part = test::beam_part("beam", test::beam_pendulum_attachments());
-  part.spec.mass_from_mesh = false;
+  PartSpec spec;
+  spec.mass_from_mesh = false;
   mech::MultibodyModel model = test::beam_pendulum();
   body_named(model, "beam")->mass_kg = 0.0;
-  const std::string message = error_of([&] { apply_mass_properties(model, {part}, Log::quiet()); });
+  const std::string message = error_of([&] { apply_mass_properties(model, {part}, Log::quiet(), {spec}); });
   EXPECT_TRUE(contains(message, "part 'beam' (test beam): mass_properties = \"case\" needs the body's mass_kg > 0"))
       << message;
 }
@@ -261,7 +263,7 @@ TEST(CheckPartAgainstModel, Spec1LeverChainPresetPasses) {
   const std::vector<Part>& parts = preset_parts(mech::ManipulatorType::LeverChain);
   ASSERT_EQ(parts.size(), 2u);
   apply_mass_properties(model, parts, Log::quiet());
-  for (const Part& part : parts) EXPECT_NO_THROW(check_part_against_model(part, model)) << part.spec.label;
+  for (const Part& part : parts) EXPECT_NO_THROW(check_part_against_model(part, model)) << part.label;
 }
 
 TEST(CheckPartAgainstModel, Spec2LeverPresetPasses) {
@@ -269,7 +271,7 @@ TEST(CheckPartAgainstModel, Spec2LeverPresetPasses) {
   const std::vector<Part>& parts = preset_parts(mech::ManipulatorType::Lever);
   ASSERT_EQ(parts.size(), 3u);
   apply_mass_properties(model, parts, Log::quiet());
-  for (const Part& part : parts) EXPECT_NO_THROW(check_part_against_model(part, model)) << part.spec.label;
+  for (const Part& part : parts) EXPECT_NO_THROW(check_part_against_model(part, model)) << part.label;
 }
 
 TEST(CheckPartAgainstModel, Spec1LeverTurnedByAQuarterFailsAtJointA) {

@@ -70,8 +70,8 @@ inline pipeline::Part mesh_part(const std::string& body, loads::LinkDefinition a
   pipeline::Part part;
   attachments.body = body;
   attachments.model = nullptr;
-  part.spec.attachments = std::move(attachments);
-  part.spec.label = "part '" + body + "' (test bar)";
+  part.attachments = std::move(attachments);
+  part.label = "part '" + body + "' (test bar)";
   part.model.mesh = std::move(mesh);
   part.model.material = material;
   part.mass = fem::mass_properties(part.model.mesh, part.model.material);

@@ -1,6 +1,8 @@
 // ElasticAssembly (structure/elastic_assembly.hpp): interfaces, flexibility,
 // the rigid-body path and the errors, on the small models of
 // structure_fixtures.hpp.
+#include <memory>
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -8,6 +10,8 @@
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
+#include "kinetofem/solver/rigid_body.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 #include "structure_fixtures.hpp"
 
@@ -70,7 +74,7 @@ TEST(ElasticAssembly, ZeroLoadsGiveZeroDisplacement) {
   Arm a = arm();
   a.model.gravity = {0.0, 0.0};
   for (auto& b : a.model.bodies) b.point_masses.clear();
-  a.parts[1].spec.attachments.point_masses.clear();
+  a.parts[1].attachments.point_masses.clear();
   const mech::Frame rest = mech::run_kinematics(mech::MultibodySystem(a.model), {0.0}).frames.front();
   ElasticAssembly assembly(a.parts, a.model);
   const PoseSolution pose = assembly.solve(rest);
@@ -97,28 +101,38 @@ TEST(ElasticAssembly, SolvesEveryPoseWithOneSetupAndReportsTheCost) {
             1e-14 * poses[1].max_displacement_m);
 }
 
-TEST(ElasticAssembly, PartsSetUpOneAtATimeWithTheirFactorsFreedGiveTheSameSolution) {
-  // AssemblyOptions::defer_part_setup + release_factors (the driver's path
-  // for parts whose factors do not fit in memory together). Reference: the
-  // assembly set up at construction; the same solves in the same order, so
+TEST(ElasticAssembly, PartsSetUpOneAtATimeWithLentFactorsFreedAfterwardsGiveTheSameSolution) {
+  // PartsLentOneByOne + set_up_part(body, factor) (pipeline::PartFactors'
+  // path for parts whose factors do not fit in memory together; the lender
+  // frees each factor after its set-up). Reference: the assembly set up at
+  // construction with its own factors; the same solves in the same order, so
   // the same numbers bit for bit.
   const Arm a = arm();
   ElasticAssembly reference(a.parts, a.model);
-  AssemblyOptions deferred;
-  deferred.defer_part_setup = true;
-  deferred.release_factors = true;
-  ElasticAssembly assembly(a.parts, a.model, deferred);
+  std::vector<fem::FeModel> supported;
+  for (const auto& part : a.parts) {
+    supported.push_back(part.model);
+    std::vector<fem::Index> all(size_t(part.model.mesh.node_count()));
+    for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
+    supported.back().supports = fem::three_two_one_support(part.model.mesh, all);
+  }
+  std::vector<std::unique_ptr<fem::LinearStaticAnalysis>> factors;
+  for (const auto& model : supported) factors.push_back(std::make_unique<fem::LinearStaticAnalysis>(model, Log::quiet()));
+  ElasticAssembly assembly(a.parts, a.model, AssemblyOptions{}, Log::quiet(), PartsLentOneByOne{});
   EXPECT_FALSE(assembly.is_set_up());
   EXPECT_NE(error_of([&] { assembly.solve(a.frames); }).find("not set up yet"), std::string::npos);
-  assembly.set_up_part("link1");
+  EXPECT_NE(error_of([&] { assembly.set_up_part("link1", *factors[1]); }).find("not of this part"), std::string::npos);
+  assembly.set_up_part("link1", *factors[0]);
   // Everything but set_up_part needs every part set up.
   EXPECT_NE(error_of([&] { assembly.flexibility("link1"); }).find("not set up yet"), std::string::npos);
-  assembly.set_up_part("link2");
+  assembly.set_up_part("link2", *factors[1]);
   EXPECT_TRUE(assembly.is_set_up());
-  EXPECT_NE(error_of([&] { assembly.set_up_part("link2"); }).find("set up already"), std::string::npos);
-  EXPECT_NE(error_of([&] { assembly.set_up_part("frame"); }).find("no elastic part"), std::string::npos);
-  EXPECT_FALSE(assembly.supported_analysis("link1").is_factorized());  // freed
-  EXPECT_FALSE(assembly.supported_analysis("link2").is_factorized());
+  EXPECT_NE(error_of([&] { assembly.set_up_part("link2", *factors[1]); }).find("set up already"), std::string::npos);
+  EXPECT_NE(error_of([&] { assembly.set_up_part("frame", *factors[0]); }).find("no elastic part"), std::string::npos);
+  // Superposed loads: no pose solves with the factors, so their lender frees them.
+  EXPECT_FALSE(assembly.solves_with_factor("link1"));
+  EXPECT_FALSE(assembly.solves_with_factor("link2"));
+  for (auto& f : factors) f->release_factor();
   const std::vector<PoseSolution> expected = reference.solve(a.frames);
   const std::vector<PoseSolution> got = assembly.solve(a.frames);
   ASSERT_EQ(got.size(), expected.size());
@@ -129,10 +143,6 @@ TEST(ElasticAssembly, PartsSetUpOneAtATimeWithTheirFactorsFreedGiveTheSameSoluti
       EXPECT_EQ((got[f].part(body).von_mises_pa - expected[f].part(body).von_mises_pa).cwiseAbs().maxCoeff(), 0.0)
           << body << " pose " << f;
     }
-  // A user of the freed factorization makes it again (the vibration's reductions do).
-  fem::LinearStaticAnalysis& analysis = assembly.supported_analysis("link1");
-  analysis.factorize();
-  EXPECT_TRUE(analysis.is_factorized());
 }
 
 TEST(ElasticAssembly, DisplacementIncludesTheRigidMotionFromTheJoints) {
@@ -190,7 +200,7 @@ TEST(ElasticAssembly, MissingDriveIsAMechanismNamingTheFreeJoint) {
   mech::MultibodyModel model = a.model;
   model.motion_drives.pop_back();
   for (auto& p : a.parts)
-    std::erase_if(p.spec.attachments.drives, [](const loads::DriveAttachment& d) { return d.drive == "d2"; });
+    std::erase_if(p.attachments.drives, [](const loads::DriveAttachment& d) { return d.drive == "d2"; });
   ElasticAssembly assembly(a.parts, model);
   const std::string message = error_of([&] { assembly.solve(a.frames[0]); });
   std::printf("  %s\n", message.c_str());
@@ -240,7 +250,7 @@ TEST(ElasticAssembly, ChainWithoutStiffnessIsAnError) {
 
 TEST(ElasticAssembly, PartWithoutFaceSetForAJointIsAnError) {
   Arm a = arm();
-  a.parts[1].spec.attachments.joints.clear();
+  a.parts[1].attachments.joints.clear();
   const std::string message = error_of([&] { ElasticAssembly(a.parts, a.model); });
   EXPECT_TRUE(
       contains(message, "part 'link2' (test bar): joint 'J2' acts on body 'link2' but the part names no face set"))
@@ -249,7 +259,7 @@ TEST(ElasticAssembly, PartWithoutFaceSetForAJointIsAnError) {
 
 TEST(ElasticAssembly, PartWithoutFaceSetForADriveIsAnError) {
   Arm a = arm();
-  a.parts[1].spec.attachments.drives.clear();
+  a.parts[1].attachments.drives.clear();
   const std::string message = error_of([&] { ElasticAssembly(a.parts, a.model); });
   EXPECT_TRUE(contains(message, "motion drive 'd2' acts on body 'link2' but the part names no face set")) << message;
 }
@@ -258,7 +268,7 @@ TEST(ElasticAssembly, MissingLoadAttachmentIsAnErrorNamingThePartAndTime) {
   // link2 without its payload's attachment: its loads miss the payload's
   // weight and inertia, which the multibody body has.
   Arm a = arm();
-  a.parts[1].spec.attachments.point_masses.clear();
+  a.parts[1].attachments.point_masses.clear();
   ElasticAssembly assembly(a.parts, a.model);
   const std::string message = error_of([&] { assembly.solve(a.frames[0]); });
   std::printf("  %s\n", message.c_str());

@@ -84,7 +84,7 @@ inline MonolithicResult solve_monolithic(const std::vector<pipeline::Part>& part
       for (SpMat::InnerIterator it(Kw, k); it; ++it)
         kt.emplace_back(offset[p] + it.row(), offset[p] + it.col(), it.value());
     diagonal = std::max(diagonal, full.diagonal().cwiseAbs().maxCoeff());
-    loads::LinkDefinition def = parts[p].spec.attachments;
+    loads::LinkDefinition def = parts[p].attachments;
     def.model = &fe;
     def.joints.clear();
     std::erase_if(def.drives, [&](const loads::DriveAttachment& d) {
@@ -126,12 +126,12 @@ inline MonolithicResult solve_monolithic(const std::vector<pipeline::Part>& part
     return ref;
   };
   auto face_of_joint = [&](int p, const std::string& joint) {
-    for (const auto& a : parts[size_t(p)].spec.attachments.joints)
+    for (const auto& a : parts[size_t(p)].attachments.joints)
       if (a.joint == joint) return a.face_set;
     fail("no face set for {}", joint);
   };
   auto face_of_drive = [&](int p, const std::string& drive) {
-    for (const auto& a : parts[size_t(p)].spec.attachments.drives)
+    for (const auto& a : parts[size_t(p)].attachments.drives)
       if (a.drive == drive) return a.face_set;
     fail("no face set for {}", drive);
   };

@@ -78,7 +78,7 @@ TEST(ElasticAssemblyDeterminate, VonMisesEqualsThePerLinkAnalysis) {
     std::vector<fem::Index> all(size_t(supported.mesh.node_count()));
     for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
     supported.supports = fem::three_two_one_support(supported.mesh, all);
-    loads::LinkDefinition def = part.spec.attachments;
+    loads::LinkDefinition def = part.attachments;
     def.model = &supported;
     const loads::LinkLoads link_loads(def, r.model);
     std::vector<Eigen::VectorXd> per_link;

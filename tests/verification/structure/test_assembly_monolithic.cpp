@@ -77,7 +77,7 @@ TEST(ElasticAssemblyMonolithic, IndeterminateArmWithCompliantDriveMatchesAtThree
   model.bodies[0].points["anchor"] = {0.0, 0.0};
   model.joints.push_back(mech::make_revolute("J3", "frame", "anchor", "link2", "tip"));
   std::vector<pipeline::Part> parts = s.parts;
-  parts[1].spec.attachments.joints.push_back({"J3", "x1"});
+  parts[1].attachments.joints.push_back({"J3", "x1"});
   AssemblyOptions options;
   options.drives = {{"d2", 2000.0}};
   expect_matches_monolithic(parts, model, s.frames, options, {{"d2", 2000.0}}, "indeterminate");

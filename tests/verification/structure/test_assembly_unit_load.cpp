@@ -128,7 +128,7 @@ TEST(ElasticAssemblyUnitLoad, ClosedLoopArmIsIndeterminateAndItsSplitStillAddsUp
   const std::vector<mech::Frame> frames = mech::run_kinematics(mech::MultibodySystem(model), {0.2}).frames;
   model.bodies[0].points["anchor"] = {0.0, 0.0};
   model.joints.push_back(mech::make_revolute("J3", "frame", "anchor", "link2", "tip"));
-  parts[1].spec.attachments.joints.push_back({"J3", "x1"});
+  parts[1].attachments.joints.push_back({"J3", "x1"});
   AssemblyOptions o;
   o.drives = {{"d2", 2000.0}};
   o.points = {{"mid", "link2", "origin", "x0"}};

@@ -50,8 +50,8 @@
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/postproc/provenance.hpp"
-#include "kinetofem/structure/assembly_over_motion.hpp"
-#include "kinetofem/structure/vibration_over_motion.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
 
 namespace kinetofem::driver {
 
@@ -77,7 +77,7 @@ struct MotionStressCase {
   // stiffness and points (e.g. the gripper point H with its face set).
   std::optional<structure::AssemblyOptions> assembly;
   // The vibration over the motion (after step 8, which it needs); empty: not run.
-  std::optional<structure::VibrationOptions> vibration;
+  std::optional<pipeline::VibrationOptions> vibration;
   // The fatigue check of every part over the work cycle (after step 6);
   // empty: not run.
   std::optional<pipeline::FatigueSettings> fatigue;
@@ -90,8 +90,8 @@ struct MotionStressRun {
   mech::Results motion;
   std::optional<mech::Frame> static_pose;
   std::vector<PartSummary> parts;
-  std::optional<structure::AssemblySummary> assembly;
-  std::optional<structure::VibrationSummary> vibration;  // when c.vibration
+  std::optional<pipeline::AssemblySummary> assembly;
+  std::optional<pipeline::VibrationSummary> vibration;  // when c.vibration
   std::vector<pipeline::PartFatigue> fatigue;  // per part, when c.fatigue
   pipeline::PartFactorizationReport factorization;  // side by side or one after the other, and why
   std::filesystem::path results_file;

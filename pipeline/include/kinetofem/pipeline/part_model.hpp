@@ -31,6 +31,7 @@
 #include "kinetofem/meshes/part_file.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
+#include "kinetofem/structure/part.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -59,13 +60,9 @@ struct PartSpec {
   std::string label;  // for messages: "part 'crank' (parts/crank.step)"
 };
 
-struct Part {
-  PartSpec spec;
-  fem::FeModel model;         // mesh in the body frame, material; no supports
-  fem::MassProperties mass;   // of the mesh, body frame
-  double meshing_seconds = 0.0;
-  const std::string& body() const { return spec.attachments.body; }
-};
+// A built part (structure/part.hpp): the libraries beneath the pipeline
+// (structure/, vibration/) take it; its spec stays here.
+using Part = structure::Part;
 
 // Meshes every part (Gmsh, through the mesh cache when options.cache_dir is
 // set), places it and computes its mass properties; prints one line per part
@@ -77,10 +74,13 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
 // x_body = R(angle) x + offset for every node (face and node sets unchanged).
 void place_mesh(fem::Mesh& mesh, const PartPlacement& placement);
 
-// Writes each part's mass properties into its body of `model` (unless the
-// part keeps the case's values) and prints both, mesh and case, per body.
-// Throws Error for a part on the ground or on a body the model lacks.
-void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log);
+// Writes each part's mass properties into its body of `model` (unless its
+// spec keeps the case's values: PartSpec::mass_from_mesh; `specs` empty:
+// every part's from its mesh, else one spec per part, in order) and prints
+// both, mesh and case, per body. Throws Error for a part on the ground or on
+// a body the model lacks.
+void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log,
+                           const std::vector<PartSpec>& specs = {});
 
 // The fit checks of the header comment; throws Error naming the part, the
 // joint, the face set and the distance.

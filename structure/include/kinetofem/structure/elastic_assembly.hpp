@@ -8,7 +8,7 @@
 // link's deformation relative to its own rigid motion. docs/elastic_assembly.md.
 //
 // Model
-//   * Bodies with a pipeline::Part are elastic (mesh in the body frame), the
+//   * Bodies with a Part are elastic (mesh in the body frame), the
 //     others rigid; the ground is fixed.
 //   * Interfaces. Each end of a joint on a body, each end of a motion drive
 //     and each tracked point is an interface with 6 components (translation
@@ -70,7 +70,7 @@
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
-#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/structure/part.hpp"
 #include "kinetofem/solver/assembly.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 
@@ -135,16 +135,11 @@ struct AssemblyOptions {
   // Output times whose fields analyse_assembly_over_motion writes (mask over
   // the motion; empty = all); histories and envelopes cover every one.
   std::vector<bool> field_steps;
-  // Construction stops after the topology and the checks: each part's
-  // interface columns and load patterns are solved by set_up_part(body), e.g.
-  // right after the part's per-part stage while its factor is in memory
-  // (driver: parts whose factors do not fit in memory together).
-  bool defer_part_setup = false;
-  // After a part's set-up solves, free its factor
-  // (fem::LinearStaticAnalysis::release_factor) when it superposes its loads,
-  // so no pose needs it. A later user of supported_analysis() must factorize() again.
-  bool release_factors = false;
 };
+
+// Tag: construct the topology and checks only; each part is set up later
+// with its factor lent (ElasticAssembly::set_up_part).
+struct PartsLentOneByOne {};
 
 // Rigid motion alpha of a moving body (world axes): translation of its frame
 // origin and rotation. For an elastic part, relative to its 3-2-1 support.
@@ -291,18 +286,29 @@ class ElasticAssembly {
   // drive acting on a part that names no face set for it, a prismatic joint,
   // a chain without its EA or hinged off the ground, a displacement drive,
   // an option naming an unknown chain, drive, body or point.
-  // `factorized`: empty, or per part (in order) a factorization of the part
-  // with its 3-2-1 support made before (pipeline::SupportedPart), reused
-  // instead of a new one (nullptr: made here); it must outlive the assembly.
-  ElasticAssembly(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
+  // Every part is set up here. `factorized`: empty, or per part (in order)
+  // a factorization of the part with its 3-2-1 support, lent by the caller
+  // (nullptr: made and owned here); a lent one must be factorized and
+  // outlive the assembly, which never frees it.
+  ElasticAssembly(const std::vector<Part>& parts, const mech::MultibodyModel& model,
                   AssemblyOptions options = {}, const Log& log = Log::quiet(),
                   const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
+  // The topology and the checks only: the caller sets every part up with
+  // set_up_part, e.g. right after the part's per-part stage while its factor
+  // is in memory (pipeline::PartFactors, factors one at a time).
+  ElasticAssembly(const std::vector<Part>& parts, const mech::MultibodyModel& model, AssemblyOptions options,
+                  const Log& log, PartsLentOneByOne);
   ~ElasticAssembly();
   ElasticAssembly(ElasticAssembly&&) noexcept;
-  // The part's solves (its factorization first when deferred or freed), when
-  // AssemblyOptions::defer_part_setup left them; each part once (else Error).
-  // Everything below, solve() included, needs every part set up (else Error).
-  void set_up_part(const std::string& body);
+  // The part's interface and load-pattern solves with its factorization
+  // (factorized, of this part with its 3-2-1 support; lent: it must outlive
+  // the assembly, whose poses solve with it unless solves_with_factor says
+  // no); each part once (else Error). Everything below, solve() included,
+  // needs every part set up (else Error).
+  void set_up_part(const std::string& body, fem::LinearStaticAnalysis& factor);
+  // Whether solve() still solves with the part's factor (its loads not
+  // superposed); false: its lender may free it after set_up_part.
+  bool solves_with_factor(const std::string& body) const;
   bool is_set_up() const;
   ElasticAssembly& operator=(ElasticAssembly&&) noexcept;
 

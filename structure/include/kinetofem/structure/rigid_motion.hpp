@@ -1,5 +1,6 @@
 #pragma once
-// Small helpers shared by the condensations of structure/ (private header):
+// Small helpers shared by the condensations of structure/ and the stages and
+// modes built on them (pipeline/, vibration/), in namespace detail:
 // the rigid transfer and rotation of a 6-component motion, the world
 // position of a part's nodes, and the block solve of K_s^-1 B as columns.
 // SI units.

@@ -1,4 +1,4 @@
-// The stage "elastic assembly over the motion" (structure/assembly_over_motion.hpp):
+// The stage "elastic assembly over the motion" (pipeline/assembly_over_motion.hpp):
 // what it writes (bodies assembly.<b> with a moving geometry, histories of the
 // tracked points, their split and compliance, chain and drive histories),
 // its summary, and its errors. The lever-chain of structure_fixtures.hpp with
@@ -15,11 +15,13 @@
 #include "kinetofem/pipeline/histories.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/postproc/results_file.hpp"
-#include "kinetofem/structure/assembly_over_motion.hpp"
-#include "structure_fixtures.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
+#include "../structure/structure_fixtures.hpp"
 
 namespace kinetofem::structure {
 namespace {
+
+using namespace kinetofem::pipeline;  // the stage under test
 
 namespace fs = std::filesystem;
 

@@ -1,7 +1,7 @@
 #pragma once
 // Stage "the vibration of the manipulator over the motion" (issue 14,
 // docs/vibration.md): the natural frequencies of the elastic assembly in
-// every pose (structure/assembly_modes.hpp: one Craig-Bampton reduction per
+// every pose (vibration/assembly_modes.hpp: one Craig-Bampton reduction per
 // part, one small eigenproblem per pose) and the elastic vibration of the
 // tracked points (the gripper point H) that the motion's inertia and weight
 // loads excite, during the stroke and for a settling window after the stop.
@@ -53,13 +53,13 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
-#include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
-#include "kinetofem/structure/assembly_modes.hpp"
-#include "kinetofem/structure/assembly_over_motion.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
+#include "kinetofem/structure/part.hpp"
+#include "kinetofem/vibration/assembly_modes.hpp"
 
-namespace kinetofem::structure {
+namespace kinetofem::pipeline {
 
 // Modal damping ratio of a welded steel structure at working stress:
 // 2 to 3 % (N. M. Newmark, W. J. Hall, "Earthquake Spectra and Design",
@@ -70,7 +70,7 @@ inline constexpr double kDefaultModalDampingRatio = 0.02;
 inline constexpr double kDefaultSettlingToleranceM = 0.1e-3;
 
 struct VibrationOptions {
-  AssemblyModesOptions modes;
+  vibration::AssemblyModesOptions modes;
   double damping_ratio = kDefaultModalDampingRatio;     // 0 <= zeta < 1
   double settling_tolerance_m = kDefaultSettlingToleranceM;  // > 0
 };
@@ -101,7 +101,7 @@ struct VibrationSummary {
   std::vector<PointVibration> points;
   double damping_ratio = 0.0, settling_tolerance_m = 0.0;
   double stop_time_s = 0.0, window_after_stop_s = 0.0;
-  std::vector<PartReduction> reductions;
+  std::vector<vibration::PartReduction> reductions;
   double cutoff_hz = 0.0;
   std::string rule_check;
   Eigen::Index reduced_size = 0;
@@ -114,29 +114,29 @@ struct VibrationSummary {
 // Throws Error for bad options (modes < 1, zeta outside [0, 1), tolerance
 // <= 0), a zero-density part, an eigen solve that does not converge (naming
 // the part and the modes converged), rigid-bore couplings.
-VibrationSummary analyse_vibration_over_motion(const std::vector<pipeline::Part>& parts,
+VibrationSummary analyse_vibration_over_motion(const std::vector<structure::Part>& parts,
                                                const mech::MultibodyModel& model,
                                                const std::vector<mech::Frame>& motion,
                                                const std::optional<mech::Frame>& static_pose,
-                                               post::ResultsWriter& writer, const AssemblyOptions& assembly_options,
+                                               post::ResultsWriter& writer, const structure::AssemblyOptions& assembly_options,
                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
                                                const Log& log,
                                                const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
 
 // The same on the caller's (set-up) assembly, e.g. the one the quasi-static
 // stage ran (driver): its parts' interface columns are not solved again. Its
-// parts' factorizations must still be there (AssemblyOptions::release_factors
-// off), or each is made again for its reduction.
-VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
-                                               const std::vector<pipeline::Part>& parts,
+// parts' factorizations must still be lent to it (PartFactors keeps them
+// until the vibration is done).
+VibrationSummary analyse_vibration_over_motion(const structure::ElasticAssembly& assembly,
+                                               const std::vector<structure::Part>& parts,
                                                const mech::MultibodyModel& model,
                                                const std::vector<mech::Frame>& motion,
                                                const std::optional<mech::Frame>& static_pose,
-                                               post::ResultsWriter& writer, const AssemblyOptions& assembly_options,
+                                               post::ResultsWriter& writer, const structure::AssemblyOptions& assembly_options,
                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
                                                const Log& log);
 
 // The frequencies, amplification and settling in a few lines (Hz, mm, s).
 std::string format_vibration_summary(const VibrationSummary& summary);
 
-}  // namespace kinetofem::structure
+}  // namespace kinetofem::pipeline

@@ -1,5 +1,5 @@
 // Issue 14, verification 4: the natural frequencies of the reduced elastic
-// assembly (structure/assembly_modes.hpp: one Craig-Bampton reduction per part
+// assembly (vibration/assembly_modes.hpp: one Craig-Bampton reduction per part
 // with the default part-mode rule, one small eigenproblem per pose) against a
 // full eigen-solve of the monolithic assembly at two poses: the first five
 // frequencies within 1e-4 (relative).
@@ -30,11 +30,13 @@
 #include "kinetofem/solver/couplings.hpp"
 #include "kinetofem/solver/dof_map.hpp"
 #include "kinetofem/solver/mass_matrix.hpp"
-#include "kinetofem/structure/assembly_modes.hpp"
+#include "kinetofem/vibration/assembly_modes.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 
 namespace kinetofem::structure {
 namespace {
+
+using namespace kinetofem::vibration;  // the modes under test
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -77,7 +79,7 @@ VectorXd monolithic_frequencies(const std::vector<pipeline::Part>& parts, const 
       ++local;
     }
     // Point masses on the translation of their couplings.
-    for (const auto& pm : parts[p].spec.attachments.point_masses) {
+    for (const auto& pm : parts[p].attachments.point_masses) {
       for (const mech::PointMass& mass : model.bodies[size_t(body)].point_masses) {
         if (mass.name != pm.point_mass) continue;
         const fem::DistributingCoupling coupling(mesh, pm.face_set);

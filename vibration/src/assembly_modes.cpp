@@ -1,6 +1,4 @@
-#include "kinetofem/structure/assembly_modes.hpp"
-
-#include "rigid_motion.hpp"
+#include "kinetofem/vibration/assembly_modes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,15 +13,20 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/solver/couplings.hpp"
+#include "kinetofem/structure/rigid_motion.hpp"
 
-namespace kinetofem::structure {
+namespace kinetofem::vibration {
+
+using structure::InterfaceInfo;
+using structure::InterfaceStructure;
+using structure::Vector6d;
 
 namespace {
 
-using detail::Matrix6d;
-using detail::rotate6;
-using detail::skew;
-using detail::transfer;
+using structure::detail::Matrix6d;
+using structure::detail::rotate6;
+using structure::detail::skew;
+using structure::detail::transfer;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::Vector3d;
@@ -90,7 +93,7 @@ struct AssemblyModes::Impl {
   MatrixXd K, M;
   double length_scale = 1.0, cutoff = 0.0, fmax_estimate = 0.0;
 
-  Impl(const ElasticAssembly& a, const std::vector<pipeline::Part>& given, const mech::MultibodyModel& model,
+  Impl(const ElasticAssembly& a, const std::vector<structure::Part>& given, const mech::MultibodyModel& model,
        const AssemblyModesOptions& o, const std::vector<mech::Frame>& poses, const Log& l);
 
   void reduce_parts(const vibration::CraigBamptonOptions& cbo);
@@ -160,7 +163,7 @@ struct AssemblyModes::Impl {
   }
 };
 
-AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<pipeline::Part>& given,
+AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure::Part>& given,
                           const mech::MultibodyModel& model, const AssemblyModesOptions& o,
                           const std::vector<mech::Frame>& poses, const Log& l)
     : assembly(a), options(o), log(l), infos(a.interfaces()) {
@@ -183,10 +186,10 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<pipeline::
     if (!model.bodies[b].fixed) moving_index[b] = moving++;
 
   // Parts: their interfaces (shared where they coincide) and point masses.
-  for (const pipeline::Part& part : given) {
+  for (const structure::Part& part : given) {
     PartRed pr;
     pr.body = part.body();
-    pr.label = part.spec.label.empty() ? fmt::format("part '{}'", pr.body) : part.spec.label;
+    pr.label = part.label.empty() ? fmt::format("part '{}'", pr.body) : part.label;
     pr.body_index = body_index(pr.body);
     pr.mesh = &assembly.supported_analysis(pr.body).model().mesh;
     pr.loads = &assembly.part_loads(pr.body);
@@ -220,7 +223,7 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<pipeline::
     }
     require(6 * local == G.cols(), "vibration: {}: {} interface columns for {} interfaces", pr.label, G.cols(), local);
     const mech::Body& body = model.bodies[size_t(pr.body_index)];
-    for (const auto& pm : part.spec.attachments.point_masses) {
+    for (const auto& pm : part.attachments.point_masses) {
       const auto it = std::find_if(body.point_masses.begin(), body.point_masses.end(),
                                    [&](const mech::PointMass& m) { return m.name == pm.point_mass; });
       require(it != body.point_masses.end(), "vibration: {}: body '{}' has no point mass '{}'", pr.label, pr.body,
@@ -291,7 +294,7 @@ void AssemblyModes::Impl::reduce_parts(const vibration::CraigBamptonOptions& giv
     vibration::CraigBamptonOptions cbo = given_options;
     cbo.eigen.label = pr.label;
     fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(pr.body);
-    analysis.factorize();  // a no-op unless the elastic assembly freed it (AssemblyOptions::release_factors)
+    analysis.factorize();  // a no-op: the factor is lent while the reductions need it (pipeline::PartFactors)
     pr.cb = vibration::reduce_craig_bampton(analysis, interfaces, cbo, &log);
     require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
             "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,
@@ -359,7 +362,7 @@ void AssemblyModes::Impl::build_matrices() {
 
 // ---------------------------------------------------------------------------
 
-AssemblyModes::AssemblyModes(const ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+AssemblyModes::AssemblyModes(const ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                              const mech::MultibodyModel& model, const AssemblyModesOptions& options,
                              const std::vector<mech::Frame>& poses, const Log& log)
     : impl_(std::make_unique<Impl>(assembly, parts, model, options, poses, log)) {}
@@ -443,4 +446,4 @@ std::string AssemblyModes::check_rule(double highest_frequency_seen_hz) const {
   return text;
 }
 
-}  // namespace kinetofem::structure
+}  // namespace kinetofem::vibration

@@ -1,4 +1,4 @@
-// The stage "vibration over the motion" (structure/vibration_over_motion.hpp):
+// The stage "vibration over the motion" (pipeline/vibration_over_motion.hpp):
 // what it writes, its physics in the limits (a slow motion is quasi-static,
 // a fast one rings; no damping never settles), the reduced model's static
 // deflection against the elastic assembly's, and its errors. The lever-chain
@@ -17,11 +17,13 @@
 #include "kinetofem/pipeline/histories.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/postproc/results_file.hpp"
-#include "kinetofem/structure/vibration_over_motion.hpp"
-#include "structure_fixtures.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
+#include "../structure/structure_fixtures.hpp"
 
 namespace kinetofem::structure {
 namespace {
+
+using namespace kinetofem::pipeline;  // the stage under test
 
 namespace fs = std::filesystem;
 

@@ -5,7 +5,7 @@
 // factorization per part for all of them. Quasi-static: the elastic
 // deflection does not feed back into the motion (the frames come from the
 // rigid-body dynamics). Parts' loads by unit-load superposition
-// (AssemblyOptions::superpose_loads) from 64 poses on; fewer poses are solved
+// (structure::AssemblyOptions::superpose_loads) from 64 poses on; fewer poses are solved
 // one by one (cheaper there; exact either way). docs/elastic_assembly.md.
 //
 // Written into the results file (names: docs/results.md):
@@ -37,25 +37,25 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
-#include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
+#include "kinetofem/structure/part.hpp"
 
-namespace kinetofem::structure {
+namespace kinetofem::pipeline {
 
 // A tracked point's extremes (SI; times in s).
 struct PointSummary {
   std::string name, body;
   double max_displacement_m = 0.0, max_displacement_time_s = 0.0;
   Eigen::Vector3d displacement_at_max_m = Eigen::Vector3d::Zero();
-  std::vector<PointContribution> contributions_at_max;  // at that time
+  std::vector<structure::PointContribution> contributions_at_max;  // at that time
   // Largest and smallest eigenvalue of the in-plane (x, y) compliance over
   // the motion, m/N, with their times.
   double max_compliance_m_per_n = 0.0, max_compliance_time_s = 0.0;
   double min_compliance_m_per_n = 0.0, min_compliance_time_s = 0.0;
   bool has_static_study = false;
   Eigen::Vector3d static_displacement_m = Eigen::Vector3d::Zero();
-  std::vector<PointContribution> static_contributions;
+  std::vector<structure::PointContribution> static_contributions;
   Eigen::Matrix3d static_compliance_m_per_n = Eigen::Matrix3d::Zero();
   // The displacement at every output time (T x 3, world axes, m): the
   // quasi-static deflection the vibration stage adds its ringing to.
@@ -76,43 +76,44 @@ struct AssemblySummary {
     double max_von_mises_pa = 0.0, static_von_mises_pa = 0.0;
   };
   std::vector<PartPeak> parts;
-  Indeterminacy indeterminacy;  // of the first pose (the same at every regular pose)
+  structure::Indeterminacy indeterminacy;  // of the first pose (the same at every regular pose)
   // |assembly chain tension - the dynamics'| / the dynamics', worst over the
   // poses (0 for determinate linkages up to round-off).
   double worst_chain_mismatch = 0.0;
-  AssemblyStatistics statistics;
+  structure::AssemblyStatistics statistics;
 };
 
 // `factorized`: the parts' factorizations shared with the per-part stage
-// (ElasticAssembly). Throws Error naming the part, joint, drive or time (elastic_assembly.hpp),
+// (structure::ElasticAssembly). Throws Error naming the part, joint, drive or time (elastic_assembly.hpp),
 // and when a statically determinate linkage's chain force differs from the
 // dynamics' tension by more than 1e-6 of it.
-AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& parts,
+AssemblySummary analyse_assembly_over_motion(const std::vector<structure::Part>& parts,
                                              const mech::MultibodyModel& model,
                                              const std::vector<mech::Frame>& motion,
                                              const std::optional<mech::Frame>& static_pose,
-                                             post::ResultsWriter& writer, const AssemblyOptions& options,
+                                             post::ResultsWriter& writer, const structure::AssemblyOptions& options,
                                              const Log& log,
                                              const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
 
-// The same on an assembly made (and set up) by the caller with
-// assembly_run_options(options, poses), e.g. one whose parts were set up one
-// at a time while their factors were in memory (driver). `options` as given
-// to it (points, field steps).
-AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+// The same on an assembly made (and set up) by the caller, e.g. one whose
+// parts were set up one at a time with the factors lent by PartFactors
+// (begin_elastic_assembly, set_up_assembly_part). `options` as given to it
+// (points, field steps).
+AssemblySummary analyse_assembly_over_motion(structure::ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                                              const mech::MultibodyModel& model,
                                              const std::vector<mech::Frame>& motion,
                                              const std::optional<mech::Frame>& static_pose,
-                                             post::ResultsWriter& writer, const AssemblyOptions& options,
+                                             post::ResultsWriter& writer, const structure::AssemblyOptions& options,
                                              const Log& log);
 
 // The options analyse_assembly_over_motion runs its assembly with for this
 // many poses (output times + the static study): unit-load superposition only
-// from 64 poses up (below, one solve per pose is cheaper; exact either way).
-AssemblyOptions assembly_run_options(const AssemblyOptions& options, size_t poses);
+// from kMinSuperposedPoses up (part_factors.hpp; below, one solve per pose is
+// cheaper; exact either way).
+structure::AssemblyOptions assembly_run_options(const structure::AssemblyOptions& options, size_t poses);
 
 // One line per tracked point, the total deformation and the indeterminacy,
 // in mm, um/N and %, for the run's summary.
 std::string format_assembly_summary(const AssemblySummary& summary);
 
-}  // namespace kinetofem::structure
+}  // namespace kinetofem::pipeline

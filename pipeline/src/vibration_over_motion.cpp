@@ -1,6 +1,4 @@
-#include "kinetofem/structure/vibration_over_motion.hpp"
-
-#include "rigid_motion.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +9,15 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/postproc/results_layout.hpp"
+#include "kinetofem/structure/rigid_motion.hpp"
 #include "kinetofem/vibration/modal_response.hpp"
 
-namespace kinetofem::structure {
+namespace kinetofem::pipeline {
+
+using structure::AssemblyOptions;
+using structure::ElasticAssembly;
+using vibration::AssemblyModes;
+using vibration::PoseModes;
 
 namespace {
 
@@ -44,7 +48,7 @@ struct PointTrace {
 // = 1) and mode_<i>_magnitude. Static fields, not a series: ParaView's time
 // stays the motion's; a mode is animated by Warp By Vector's scale factor.
 void write_mode_shapes(post::ResultsWriter& writer, const std::string& prefix,
-                       const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
+                       const std::vector<structure::Part>& parts, const mech::MultibodyModel& model,
                        const AssemblyModes& modes, const PoseModes& pose, const mech::Frame& frame) {
   std::vector<post::BodyWriter*> bodies;
   for (const auto& part : parts) {
@@ -52,7 +56,7 @@ void write_mode_shapes(post::ResultsWriter& writer, const std::string& prefix,
     for (size_t b = 0; b < model.bodies.size(); ++b)
       if (model.bodies[b].name == part.body()) body = int(b);
     fem::Mesh placed = part.model.mesh;
-    placed.nodes = detail::world_position(part.model.mesh, frame.bodies[size_t(body)]);
+    placed.nodes = structure::detail::world_position(part.model.mesh, frame.bodies[size_t(body)]);
     bodies.push_back(&writer.add_body(prefix + part.body(), placed));
   }
   for (Index i = 0; i < pose.shapes.cols(); ++i) {
@@ -83,7 +87,7 @@ post::FieldMatrix scalar(double value) {
 
 }  // namespace
 
-VibrationSummary analyse_vibration_over_motion(const std::vector<pipeline::Part>& parts,
+VibrationSummary analyse_vibration_over_motion(const std::vector<structure::Part>& parts,
                                                const mech::MultibodyModel& model,
                                                const std::vector<mech::Frame>& motion,
                                                const std::optional<mech::Frame>& static_pose,
@@ -105,7 +109,7 @@ VibrationSummary analyse_vibration_over_motion(const std::vector<pipeline::Part>
 }
 
 VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
-                                               const std::vector<pipeline::Part>& parts,
+                                               const std::vector<structure::Part>& parts,
                                                const mech::MultibodyModel& model,
                                                const std::vector<mech::Frame>& motion,
                                                const std::optional<mech::Frame>& static_pose,
@@ -386,4 +390,4 @@ std::string format_vibration_summary(const VibrationSummary& s) {
   return out;
 }
 
-}  // namespace kinetofem::structure
+}  // namespace kinetofem::pipeline

@@ -1,6 +1,6 @@
-#include "kinetofem/structure/assembly_over_motion.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
 
-#include "rigid_motion.hpp"
+#include "kinetofem/structure/rigid_motion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,15 +11,14 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/pipeline/part_factors.hpp"  // kMinSuperposedPoses
 #include "kinetofem/postproc/results_layout.hpp"
 
-namespace kinetofem::structure {
+namespace kinetofem::pipeline {
+
+using namespace kinetofem::structure;  // the library this stage runs
 
 using detail::world_position;
-
-namespace {
-constexpr size_t kMinSuperposedPoses = 64;  // see analyse_assembly_over_motion
-}  // namespace
 
 namespace {
 
@@ -45,7 +44,7 @@ struct BodyEnvelope {
 
 }  // namespace
 
-AssemblySummary analyse_assembly_over_motion(const std::vector<pipeline::Part>& parts,
+AssemblySummary analyse_assembly_over_motion(const std::vector<structure::Part>& parts,
                                              const mech::MultibodyModel& model,
                                              const std::vector<mech::Frame>& motion,
                                              const std::optional<mech::Frame>& static_pose,
@@ -71,7 +70,7 @@ AssemblyOptions assembly_run_options(const AssemblyOptions& options, size_t pose
   return run_options;
 }
 
-AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                                              const mech::MultibodyModel& model,
                                              const std::vector<mech::Frame>& motion,
                                              const std::optional<mech::Frame>& static_pose,
@@ -337,4 +336,4 @@ std::string format_assembly_summary(const AssemblySummary& s) {
   return out;
 }
 
-}  // namespace kinetofem::structure
+}  // namespace kinetofem::pipeline

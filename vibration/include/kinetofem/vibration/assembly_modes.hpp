@@ -44,11 +44,13 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
-#include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
+#include "kinetofem/structure/part.hpp"
 #include "kinetofem/vibration/craig_bampton.hpp"
 
-namespace kinetofem::structure {
+namespace kinetofem::vibration {
+
+using structure::ElasticAssembly;
 
 struct AssemblyModesOptions {
   int modes = 6;                      // natural frequencies wanted per pose, >= 1
@@ -81,7 +83,7 @@ class AssemblyModes {
   // gives every output time and the static pose). Throws Error for bad
   // options, rigid-bore couplings, a part of zero density, an eigen solve
   // that does not converge (vibration::EigenNotConverged names the part).
-  AssemblyModes(const ElasticAssembly& assembly, const std::vector<pipeline::Part>& parts,
+  AssemblyModes(const ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                 const mech::MultibodyModel& model, const AssemblyModesOptions& options,
                 const std::vector<mech::Frame>& poses, const Log& log);
   ~AssemblyModes();
@@ -118,4 +120,4 @@ class AssemblyModes {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace kinetofem::structure
+}  // namespace kinetofem::vibration

@@ -1,0 +1,36 @@
+#pragma once
+// Part — the elastic FE part of one body of a planar linkage, as the
+// libraries beneath the pipeline see it: its mesh in the BODY frame of the
+// multibody model (m), its material, its mass properties (body frame) and how
+// the mechanism acts on it (loads::LinkDefinition: the face set of every
+// joint, chain, drive, point mass, spring and point force on its body).
+//
+// Here in structure/, not in loads/: a Part is a body of the linkage's
+// elastic structure (the elastic assembly models it, the assembly's modes in
+// vibration/ reduce it, the per-part stress in pipeline/ loads it), while
+// loads/ only needs a part's attachments and mesh (LinkDefinition). How a part
+// is built (its source: a file or parametric dimensions, its placement) is
+// the pipeline's (pipeline::PartSpec, pipeline::build_part_models).
+#include <string>
+
+#include "kinetofem/loads/link_loads.hpp"
+#include "kinetofem/solver/fe_model.hpp"
+#include "kinetofem/solver/rigid_body.hpp"
+
+namespace kinetofem::structure {
+
+struct Part {
+  std::string label;                // for messages: "part 'crank' (parts/crank.step)"
+  // The body this part belongs to and where each load on it acts; its
+  // `model` points at `model` below once the part sits in its final place
+  // (pipeline::build_part_models sets it).
+  loads::LinkDefinition attachments;
+  fem::FeModel model;               // mesh in the body frame, material; no supports
+  fem::MassProperties mass;         // of the mesh, body frame
+  double meshing_seconds = 0.0;     // wall time its mesh took
+  const std::string& body() const { return attachments.body; }
+  // The label, or "part '<body>'" when none was given.
+  std::string name() const { return label.empty() ? "part '" + body() + "'" : label; }
+};
+
+}  // namespace kinetofem::structure
