@@ -81,6 +81,7 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
   run.dynamics_seconds = clock.seconds();
   log.info("  dynamics: {:.3f} s", run.dynamics_seconds);
   log.info("{}", run.motion.format_checks());
+  log.detail("{}", run.motion.format_final_reactions());
 
   if (c.static_pose)
     run.static_pose = in_stage(c, "the static study's pose cannot be reached",

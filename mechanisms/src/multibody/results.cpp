@@ -181,6 +181,11 @@ std::string Results::format_checks() const {
                        s.steps, s.residual_evaluations, s.jacobian_evaluations, s.error_test_failures,
                        s.nonlinear_failures);
   for (const std::string& slack : s.slack_chains) out += fmt::format("  warning: {}\n", slack);
+  return out;
+}
+
+std::string Results::format_final_reactions() const {
+  std::string out;
   if (!frames.empty()) {
     const Frame& f = frames.back();
     for (const JointFrame& j : f.joints)

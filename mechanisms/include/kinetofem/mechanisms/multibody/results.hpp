@@ -91,6 +91,8 @@ struct Results {
   RunSummary summary;
   // Human-readable check block: drift, equilibrium, energy balance, solver statistics.
   std::string format_checks() const;
+  // The joints' reactions at the last output time, a line each ("  t = 2 s, revolute 'A0': on lever F = ...").
+  std::string format_final_reactions() const;
 };
 
 struct FrameOptions {
