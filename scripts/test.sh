@@ -25,18 +25,20 @@
 # measured as a whole run):
 #   release     no benchmarks built (above): -13 s. The
 #               ParaView test now runs (it was skipped: no ParaView): +45 s
-#               (90 s of one of the two jobs).                     ~1163 s
+#               (90 s of one of the two jobs).                     ~1165 s
 #   sanitizers  build: libFuzzer coverage only where the fuzz inputs go, UBSan
 #               without alignment/object-size/pointer-overflow
-#               (scripts/configure-instrumented.sh): about -400 and -450 of
-#               its 2632 CPU-s, 1311 -> ~890 s. Tests: eleven more long numeric
-#               repeats left to the release stage (scripts/test-sanitizers.sh):
-#               551 of the 1644 s summed over the two jobs, 823 -> ~550 s;
-#               the lighter instrumentation should shorten them further
-#               (not counted).                                     ~1440 s
+#               (scripts/configure-instrumented.sh): 7 files compiled both
+#               ways took 22-39 % less CPU, ~28 % on average: 1311 -> ~940 s.
+#               Tests: eleven more long numeric repeats left to the release
+#               stage (scripts/test-sanitizers.sh): 551 of the 1644 s summed
+#               over the two jobs, 823 -> ~550 s.                  ~1490 s
 #   fuzz        unchanged (its inputs now steer by the parsers' coverage only). ~40 s
-# Estimate: ~2640 s, 44 min, against 55 (the two estimates of the sanitizer
-# build carry the most doubt: +-2 min).
+# Estimate: ~2690 s, 45 min, against 55: at the target. Not counted: the
+# sanitizer tests' run time under the lighter instrumentation (no coverage
+# counters in the solver code, fewer UBSan checks at every pointer use), which
+# should be the margin. Not tried (unmeasured): OMP_NUM_THREADS=1 in the
+# sanitizer stage as in the release stage (1.24x there).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 stages=${KINETOFEM_TEST_STAGES:-release sanitizers fuzz}
