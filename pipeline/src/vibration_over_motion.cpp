@@ -181,6 +181,9 @@ VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
   summary.rule_check = modes.check_rule(highest_wanted);
   log.info("vibration: {} modes at {} poses{} in {:.2f} s; {}", m, T, static_pose ? " + the static pose" : "",
            clock.seconds(), summary.rule_check);
+  for (const auto& r : modes.reductions())  // the run's summary gives each part's reduction too
+    log.detail("  part '{}': {} DoFs -> {} boundary + {} modes + {} residual; first mode dropped {:.5g} Hz", r.body,
+               r.dofs, r.boundary, r.modes, r.residual, r.first_dropped_hz);
   summary.modes_seconds = clock.seconds();
 
   // 3. Response along the motion and after the stop (header).

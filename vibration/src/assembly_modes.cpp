@@ -440,9 +440,6 @@ std::string AssemblyModes::check_rule(double highest_frequency_seen_hz) const {
                        (1 - 1e-12)
           ? "holds"
           : "FAILS (raise part_mode_cutoff_hz)");
-  for (const auto& r : im.reports)
-    text += fmt::format("\n  part '{}': {} DoFs -> {} boundary + {} modes + {} residual; first mode dropped {:.5g} Hz",
-                        r.body, r.dofs, r.boundary, r.modes, r.residual, r.first_dropped_hz);
   return text;
 }
 
