@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "element_kernels.hpp"
+#include "face_integration.hpp"
 #include "sparse_assembly.hpp"
 #include "kinetofem/core/error.hpp"
 
@@ -442,21 +443,8 @@ Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& ma
 
 double surface_area(const Mesh& mesh, const std::vector<FaceBlock>& faces) {
   double area = 0.0;
-  Eigen::VectorXd N;
-  Eigen::MatrixXd dN;
-  for (const auto& block : faces) {
-    const int n = nodes_per_face(block.type);
-    for (Index f = 0; f < block.size(); ++f) {
-      const auto nodes = block.face(f);
-      Eigen::MatrixXd X(n, 3);
-      for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
-      for (const auto& qp : quadrature(block.type)) {
-        shape_functions(block.type, qp.xi, N, dN);
-        const Eigen::Vector3d t1 = X.transpose() * dN.col(0), t2 = X.transpose() * dN.col(1);
-        area += qp.weight * t1.cross(t2).norm();
-      }
-    }
-  }
+  detail::for_each_face_point(mesh, faces, [&](auto&&, const Eigen::VectorXd&, const Eigen::Vector3d&,
+                                               double dA) { area += dA; });
   return area;
 }
 

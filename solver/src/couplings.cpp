@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include "face_integration.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/solver/assembly.hpp"
 #include "kinetofem/solver/element_library.hpp"
@@ -13,32 +14,12 @@ namespace kinetofem::fem {
 
 namespace {
 
+using detail::for_each_face_point;
+
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d S;
   S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return S;
-}
-
-// Calls visit(nodes of face, N at point, x at point, area weight) for every
-// Gauss point of every face.
-template <typename Visit>
-void for_each_face_point(const Mesh& mesh, const std::vector<FaceBlock>& faces, Visit&& visit) {
-  Eigen::VectorXd N;
-  Eigen::MatrixXd dN;
-  for (const auto& block : faces) {
-    const int n = nodes_per_face(block.type);
-    for (Index f = 0; f < block.size(); ++f) {
-      const auto nodes = block.face(f);
-      Eigen::MatrixXd X(n, 3);
-      for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
-      for (const auto& qp : quadrature(block.type)) {
-        shape_functions(block.type, qp.xi, N, dN);
-        const Eigen::Vector3d t1 = X.transpose() * dN.col(0), t2 = X.transpose() * dN.col(1);
-        const Eigen::Vector3d x = X.transpose() * N;
-        visit(nodes, N, x, qp.weight * t1.cross(t2).norm());
-      }
-    }
-  }
 }
 
 }  // namespace

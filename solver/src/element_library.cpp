@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 
+#include <Eigen/Dense>
+
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::fem {
@@ -89,8 +91,51 @@ const std::vector<QuadraturePoint>& load_quadrature(ElementType type) {
                                         {Eigen::Vector3d(s, h, s), 3.0 / 40.0},
                                         {Eigen::Vector3d(s, s, h), 3.0 / 40.0}};
   }();
-  if (type == ElementType::Tet4 || type == ElementType::Tet10) return tet5;
+  switch (element_facts(type).shape) {
+    case ElementShape::Tetrahedron: return tet5;
+    case ElementShape::Hexahedron: return quadrature(type);
+  }
   return quadrature(type);
+}
+
+const std::vector<QuadraturePoint>& mass_quadrature(ElementType type) {
+  switch (type) {
+    case ElementType::Tet4: return load_quadrature(type);     // degree 3 >= 2
+    case ElementType::Tet10: return curved_tet_quadrature();  // degree 5 >= 4
+    case ElementType::Hex8:                                   // 2x2x2: degree 3 per direction
+    case ElementType::Hex20: return quadrature(type);         // 3x3x3: degree 5 per direction
+  }
+  return quadrature(type);
+}
+
+Eigen::MatrixXd corner_extrapolation(ElementType type) {
+  const auto& rule = quadrature(type);
+  const Eigen::MatrixXd ref = reference_nodes(type);
+  const ElementShape shape = element_facts(type).shape;
+  const int corners = corner_nodes(type);
+  auto basis = [&](const Eigen::Vector3d& x) {
+    Eigen::VectorXd p;
+    switch (shape) {
+      case ElementShape::Tetrahedron:
+        p.resize(4);
+        p << 1, x[0], x[1], x[2];
+        break;
+      case ElementShape::Hexahedron:
+        p.resize(8);
+        p << 1, x[0], x[1], x[2], x[0] * x[1], x[1] * x[2], x[2] * x[0], x[0] * x[1] * x[2];
+        break;
+    }
+    return p;
+  };
+  const int g = int(rule.size());
+  if (g == 1) return Eigen::MatrixXd::Ones(corners, 1);  // TET4: constant stress
+  const int m = int(basis(rule[0].xi).size());
+  Eigen::MatrixXd P(g, m);
+  for (int q = 0; q < g; ++q) P.row(q) = basis(rule[size_t(q)].xi).transpose();
+  const Eigen::MatrixXd fit = P.completeOrthogonalDecomposition().pseudoInverse();  // m x g
+  Eigen::MatrixXd E(corners, g);
+  for (int a = 0; a < corners; ++a) E.row(a) = basis(ref.row(a).transpose()).transpose() * fit;
+  return E;
 }
 
 const std::vector<QuadraturePoint>& quadrature(FaceType type) {
@@ -252,18 +297,22 @@ void shape_functions(FaceType type, const Eigen::Vector3d& xi, Eigen::VectorXd& 
 }
 
 Eigen::MatrixXd reference_nodes(ElementType type) {
-  const int n = nodes_per_element(type);
-  Eigen::MatrixXd X(n, 3);
-  if (type == ElementType::Tet4 || type == ElementType::Tet10) {
-    const double corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int a = 0; a < 4; ++a) X.row(a) << corners[a][0], corners[a][1], corners[a][2];
-    if (type == ElementType::Tet10)
-      for (int e = 0; e < 6; ++e) X.row(4 + e) = 0.5 * (X.row(kTetEdges[e][0]) + X.row(kTetEdges[e][1]));
-    return X;
+  // Corners of the reference cell, then each mid-edge node halfway along its edge.
+  static constexpr double tet_corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const ElementFacts& facts = element_facts(type);
+  Eigen::MatrixXd X(facts.nodes, 3);
+  for (int a = 0; a < facts.corners; ++a) {
+    const double* corner = nullptr;
+    switch (facts.shape) {
+      case ElementShape::Tetrahedron: corner = tet_corners[a]; break;
+      case ElementShape::Hexahedron: corner = kHexCorners[a]; break;
+    }
+    X.row(a) << corner[0], corner[1], corner[2];
   }
-  for (int a = 0; a < 8; ++a) X.row(a) << kHexCorners[a][0], kHexCorners[a][1], kHexCorners[a][2];
-  if (type == ElementType::Hex20)
-    for (int e = 0; e < 12; ++e) X.row(8 + e) = 0.5 * (X.row(kHexEdges[e][0]) + X.row(kHexEdges[e][1]));
+  for (int m = facts.corners; m < facts.nodes; ++m) {
+    const auto& edge = facts.edges[size_t(m - facts.corners)];
+    X.row(m) = 0.5 * (X.row(edge[0]) + X.row(edge[1]));
+  }
   return X;
 }
 

@@ -10,21 +10,6 @@
 
 namespace kinetofem::fem {
 
-namespace {
-
-// Rule exact for N^T N on undistorted elements (header).
-const std::vector<QuadraturePoint>& mass_quadrature(ElementType type) {
-  switch (type) {
-    case ElementType::Tet4: return load_quadrature(type);  // degree 3 >= 2
-    case ElementType::Tet10: return curved_tet_quadrature();  // degree 5 >= 4
-    case ElementType::Hex8:                                   // 2x2x2: degree 3 per direction
-    case ElementType::Hex20: return quadrature(type);         // 3x3x3: degree 5 per direction
-  }
-  return quadrature(type);
-}
-
-}  // namespace
-
 SymmetricUpperMatrix assemble_mass(const Mesh& mesh, const IsotropicMaterial& material,
                                    const DofMap& dofs) {
   material.validate();

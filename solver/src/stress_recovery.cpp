@@ -21,34 +21,6 @@ Vector6d strain_at(const Eigen::Matrix<double, NPE, 3>& G, const Eigen::Matrix<d
   return e;
 }
 
-// Least-squares extrapolation from Gauss points to corner nodes: fit a
-// linear (tetrahedra: 1, xi, eta, zeta) or trilinear (hexahedra: 1, xi, eta,
-// zeta, xi eta, eta zeta, zeta xi, xi eta zeta) field in reference
-// coordinates and evaluate it at the corners. Returns corners x gauss points.
-Eigen::MatrixXd extrapolation_matrix(ElementType type) {
-  const auto& rule = quadrature(type);
-  const Eigen::MatrixXd ref = reference_nodes(type);
-  const bool tet = corner_nodes(type) == 4;
-  auto basis = [&](const Eigen::Vector3d& x) {
-    Eigen::VectorXd p(tet ? 4 : 8);
-    if (tet)
-      p << 1, x[0], x[1], x[2];
-    else
-      p << 1, x[0], x[1], x[2], x[0] * x[1], x[1] * x[2], x[2] * x[0], x[0] * x[1] * x[2];
-    return p;
-  };
-  const int m = tet ? 4 : 8;
-  const int g = int(rule.size());
-  if (g == 1) return Eigen::MatrixXd::Ones(corner_nodes(type), 1);  // TET4: constant stress
-  Eigen::MatrixXd P(g, m);
-  for (int q = 0; q < g; ++q) P.row(q) = basis(rule[size_t(q)].xi).transpose();
-  const Eigen::MatrixXd fit = P.completeOrthogonalDecomposition().pseudoInverse();  // m x g
-  Eigen::MatrixXd E(corner_nodes(type), g);
-  for (int a = 0; a < corner_nodes(type); ++a)
-    E.row(a) = basis(ref.row(a).transpose()).transpose() * fit;
-  return E;
-}
-
 }  // namespace
 
 GaussPointStress gauss_point_stress(const Mesh& mesh, const IsotropicMaterial& material,
@@ -96,7 +68,7 @@ NodalStress recover_nodal_stress(const Mesh& mesh, const IsotropicMaterial& mate
   Eigen::VectorXd count = Eigen::VectorXd::Zero(n);
   Index first_element = 0;
   for (const auto& block : mesh.blocks) {
-    const Eigen::MatrixXd E = extrapolation_matrix(block.type);
+    const Eigen::MatrixXd E = corner_extrapolation(block.type);
     const int corners = corner_nodes(block.type);
     const int npe = nodes_per_element(block.type);
     // Serial scatter: cheap next to the Gauss-point stresses, and race-free.

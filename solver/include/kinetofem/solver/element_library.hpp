@@ -39,6 +39,18 @@ Eigen::MatrixXd reference_nodes(ElementType type);
 // element's stiffness rule.
 const std::vector<QuadraturePoint>& load_quadrature(ElementType type);
 
+// Gauss rule exact for the mass integrand N^T N on undistorted elements:
+// degree 3 (5 points) on TET4, degree 5 (14 points) on TET10, the stiffness
+// rule on hexahedra (2x2x2 is degree 3, 3x3x3 degree 5 per direction).
+const std::vector<QuadraturePoint>& mass_quadrature(ElementType type);
+
+// Least-squares extrapolation from the Gauss points of quadrature(type) to
+// the corner nodes: a linear (tetrahedra: 1, xi, eta, zeta) or trilinear
+// (hexahedra: 1, xi, eta, zeta, xi eta, eta zeta, zeta xi, xi eta zeta)
+// field in reference coordinates, evaluated at the corners. corners x gauss
+// points; TET4 (one point): a column of ones.
+Eigen::MatrixXd corner_extrapolation(ElementType type);
+
 // Degree-5, 14-point positive rule on the tetrahedron: the stiffness rule of
 // TET10 elements with curved edges (the 4-point rule is exact only for
 // straight-sided ones and fails the patch test on curved ones).
