@@ -1,6 +1,7 @@
 #include "kinetofem/mechanisms/manipulator_models.hpp"
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/mechanisms/manipulator_names.hpp"
 
 namespace kinetofem::mech {
 
@@ -32,43 +33,44 @@ MultibodyModel make_manipulator_model(const ManipulatorDefinition& d) {
   m.characteristic_length_m = g.a_m;
   m.gravity = d.gravity_m_s2;
 
+  using namespace manipulator;  // the preset's names
   Body frame;
-  frame.name = "frame";
+  frame.name = kFrame;
   frame.fixed = true;
-  frame.points["B0"] = g.b0_point_m;
-  Body lever = make_body("lever", d.lever, {0, 0, 0});
-  lever.points["A"] = {0.0, g.a_m};
-  Body arm = make_body("arm", d.arm, {0.0, g.a_m, 0.0});
-  arm.points["C"] = {-g.c_m, 0.0};
-  arm.points["H"] = {-g.c_m, g.h_m};
-  if (d.gripper_mass_kg > 0) arm.point_masses.push_back({"gripper", d.gripper_mass_kg, {-g.c_m, g.h_m}});
-  if (d.casting_mass_kg > 0) arm.point_masses.push_back({"casting", d.casting_mass_kg, {-g.c_m, g.h_m}});
-  m.joints.push_back({"A0", JointType::Revolute, "frame", "origin", "lever", "origin"});
-  m.joints.push_back({"A", JointType::Revolute, "lever", "A", "arm", "origin"});
+  frame.points[kPointB0] = g.b0_point_m;
+  Body lever = make_body(kLever, d.lever, {0, 0, 0});
+  lever.points[kPointA] = {0.0, g.a_m};
+  Body arm = make_body(kArm, d.arm, {0.0, g.a_m, 0.0});
+  arm.points[kPointC] = {-g.c_m, 0.0};
+  arm.points[kPointH] = {-g.c_m, g.h_m};
+  if (d.gripper_mass_kg > 0) arm.point_masses.push_back({kGripperMass, d.gripper_mass_kg, {-g.c_m, g.h_m}});
+  if (d.casting_mass_kg > 0) arm.point_masses.push_back({kCastingMass, d.casting_mass_kg, {-g.c_m, g.h_m}});
+  m.joints.push_back({kJointA0, JointType::Revolute, kFrame, kOrigin, kLever, kOrigin});
+  m.joints.push_back({kJointA, JointType::Revolute, kLever, kPointA, kArm, kOrigin});
 
   if (d.type == ManipulatorType::LeverChain) {
     m.bodies = {frame, lever, arm};
     Joint chain;
-    chain.name = "chain";
+    chain.name = kChain;
     chain.type = JointType::Chain;
-    chain.body_i = "frame";
-    chain.point_i = "B0";
-    chain.body_j = "arm";
-    chain.point_j = "origin";
+    chain.body_i = kFrame;
+    chain.point_i = kPointB0;
+    chain.body_j = kArm;
+    chain.point_j = kOrigin;
     chain.radius_m = g.r_m;
     chain.wrap_ccw = true;  // from B0 up to the tangent point B = (r, a), then over the roller
     m.joints.push_back(chain);
   } else {
-    arm.points["B"] = {g.r_m, 0.0};
-    Body rocker = make_body("rocker", d.rocker, {g.b0_point_m.x(), g.b0_point_m.y(), 0.0});
-    rocker.points["B"] = {0.0, g.b0_m};
+    arm.points[kPointB] = {g.r_m, 0.0};
+    Body rocker = make_body(kRocker, d.rocker, {g.b0_point_m.x(), g.b0_point_m.y(), 0.0});
+    rocker.points[kPointB] = {0.0, g.b0_m};
     m.bodies = {frame, lever, arm, rocker};
-    m.joints.push_back({"B", JointType::Revolute, "arm", "B", "rocker", "B"});
-    m.joints.push_back({"B0", JointType::Revolute, "frame", "B0", "rocker", "origin"});
+    m.joints.push_back({kJointB, JointType::Revolute, kArm, kPointB, kRocker, kPointB});
+    m.joints.push_back({kJointB0, JointType::Revolute, kFrame, kPointB0, kRocker, kOrigin});
   }
   MotionDrive drive;
-  drive.name = "lever_drive";
-  drive.coordinate = {CoordinateType::Angle, "frame", "origin", "lever", "origin", {1, 0}};
+  drive.name = kLeverDrive;
+  drive.coordinate = {CoordinateType::Angle, kFrame, kOrigin, kLever, kOrigin, {1, 0}};
   drive.law = d.lever_motion;
   drive.initial = 0.0;
   m.motion_drives.push_back(drive);

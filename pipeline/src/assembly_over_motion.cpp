@@ -88,11 +88,11 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
   for (size_t p = 0; p < parts.size(); ++p) {
     const fem::Mesh& mesh = parts[p].model.mesh;
     post::BodyWriter& w = writer.add_body(post::layout::kAssemblyBodyPrefix + parts[p].body(), mesh);
-    w.begin_series({{.name = "position", .units = "m", .components = 3, .component_names = post::kVectorComponents,
+    w.begin_series({{.name = post::layout::kPosition, .units = "m", .components = 3, .component_names = post::kVectorComponents,
                      .geometry = true},
-                    {"displacement", "m", 3, post::kVectorComponents},
-                    {"displacement_magnitude", "m", 1, {}},
-                    {"von_mises", "Pa", 1, {}}});
+                    {post::layout::kDisplacement, "m", 3, post::kVectorComponents},
+                    {post::layout::kDisplacementMagnitude, "m", 1, {}},
+                    {post::layout::kVonMises, "Pa", 1, {}}});
     bodies.push_back(&w);
     const fem::Index N = mesh.node_count();
     envelopes[p] = {Eigen::VectorXd::Constant(N, -1.0), Eigen::VectorXd::Constant(N, -1.0),
@@ -127,10 +127,10 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
       const PartField& field = pose.part(parts[p].body());
       const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
       if (options.field_steps.empty() || options.field_steps.at(k))
-        bodies[p]->write_step(frame.t, {{"position", world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])])},
-                                        {"displacement", field.displacement_m},
-                                        {"displacement_magnitude", magnitude},
-                                        {"von_mises", field.von_mises_pa}});
+        bodies[p]->write_step(frame.t, {{post::layout::kPosition, world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])])},
+                                        {post::layout::kDisplacement, field.displacement_m},
+                                        {post::layout::kDisplacementMagnitude, magnitude},
+                                        {post::layout::kVonMises, field.von_mises_pa}});
       BodyEnvelope& e = envelopes[p];
 #pragma omp parallel for schedule(static)
       for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
@@ -214,9 +214,9 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
   if (!options.field_steps.empty())
     for (const auto& frame : motion) step_times.push_back(frame.t);
   for (size_t p = 0; p < parts.size(); ++p) {
-    bodies[p]->write_envelope("displacement_magnitude", "m", envelopes[p].max_u, envelopes[p].step_u, "max",
+    bodies[p]->write_envelope(post::layout::kDisplacementMagnitude, "m", envelopes[p].max_u, envelopes[p].step_u, post::layout::kEnvelopeMax,
                               step_times);
-    bodies[p]->write_envelope("von_mises", "Pa", envelopes[p].max_vm, envelopes[p].step_vm, "max", step_times);
+    bodies[p]->write_envelope(post::layout::kVonMises, "Pa", envelopes[p].max_vm, envelopes[p].step_vm, post::layout::kEnvelopeMax, step_times);
   }
 
   if (static_pose) {
@@ -227,12 +227,12 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
     for (size_t p = 0; p < parts.size(); ++p) {
       const PartField& field = pose.part(parts[p].body());
       post::BodyWriter& w = *bodies[p];
-      w.write_static("static_position", "m",
+      w.write_static(post::layout::static_name(post::layout::kPosition), "m",
                      world_position(parts[p].model.mesh, static_pose->bodies[size_t(part_body[p])]),
                      post::kVectorComponents);
-      w.write_static("static_displacement", "m", field.displacement_m, post::kVectorComponents);
-      w.write_static("static_displacement_magnitude", "m", field.displacement_m.rowwise().norm());
-      w.write_static("static_von_mises", "Pa", field.von_mises_pa);
+      w.write_static(post::layout::static_name(post::layout::kDisplacement), "m", field.displacement_m, post::kVectorComponents);
+      w.write_static(post::layout::static_name(post::layout::kDisplacementMagnitude), "m", field.displacement_m.rowwise().norm());
+      w.write_static(post::layout::static_name(post::layout::kVonMises), "Pa", field.von_mises_pa);
       summary.parts[p].static_von_mises_pa = field.von_mises_pa.maxCoeff();
     }
     for (size_t i = 0; i < P; ++i) {

@@ -29,7 +29,7 @@ void write_histories(post::ResultsWriter& w, const mech::MultibodyModel& m, cons
   };
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const std::string p = "body." + m.bodies[b].name + ".";
-    w.write_history(clean(p + "position"), "m", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q.head<2>().transpose(); }, 2), xy);
+    w.write_history(clean(p + post::layout::kPosition), "m", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q.head<2>().transpose(); }, 2), xy);
     w.write_history(clean(p + "angle"), "rad", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q.z(); }, 1));
     w.write_history(clean(p + "velocity"), "m/s", column([&](const mech::Frame& f, auto row) { row = f.bodies[b].q_dot.head<2>().transpose(); }, 2), xy);
     w.write_history(clean(p + "angular_velocity"), "rad/s", column([&](const mech::Frame& f, auto row) { row(0) = f.bodies[b].q_dot.z(); }, 1));

@@ -1,6 +1,7 @@
 #include "kinetofem/pipeline/manipulator_preset.hpp"
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/mechanisms/manipulator_names.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -8,13 +9,14 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
   const bool chain = def.type == mech::ManipulatorType::LeverChain;
   const mech::LeverChainGeometry& g = def.geometry;
   const loads::BoreLoad pin = links.bore_load;
+  using namespace mech::manipulator;  // the preset's body, joint and face-set names
 
   PartSpec lever;
   lever.source = PartSource::Lever;
   lever.lever = links.lever;
   lever.lever.length_m = g.a_m;
   lever.label = "part 'lever' (lever 1)";
-  lever.attachments = {"lever", nullptr, {{"A0", "bore_A0", pin}, {"A", "bore_A", pin}}, {}, {{"lever_drive", "bore_A0"}}};
+  lever.attachments = {kLever, nullptr, {{kJointA0, kBoreA0, pin}, {kJointA, kBoreA, pin}}, {}, {{kLeverDrive, kBoreA0}}};
 
   PartSpec arm;
   arm.source = chain ? PartSource::ArmWithRoller : PartSource::Coupler;
@@ -25,12 +27,12 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
   arm.arm.boss_diameter_m = links.lever.boss_diameter_m;
   arm.arm.boss_length_m = links.lever.boss_length_m;
   arm.label = chain ? "part 'arm' (link 2 with roller)" : "part 'arm' (coupler, link 2)";
-  arm.attachments.body = "arm";
-  arm.attachments.joints.push_back({"A", "bore_A", pin});
-  if (chain) arm.attachments.joints.push_back({"chain", "roller_rim", loads::BoreLoad::DistributingCoupling});
-  else arm.attachments.joints.push_back({"B", "bore_B", pin});
-  if (def.gripper_mass_kg > 0) arm.attachments.point_masses.push_back({"gripper", "gripper_mount"});
-  if (def.casting_mass_kg > 0) arm.attachments.point_masses.push_back({"casting", "gripper_mount"});
+  arm.attachments.body = kArm;
+  arm.attachments.joints.push_back({kJointA, kBoreA, pin});
+  if (chain) arm.attachments.joints.push_back({kChain, kRollerRim, loads::BoreLoad::DistributingCoupling});
+  else arm.attachments.joints.push_back({kJointB, kBoreB, pin});
+  if (def.gripper_mass_kg > 0) arm.attachments.point_masses.push_back({kGripperMass, kGripperMount});
+  if (def.casting_mass_kg > 0) arm.attachments.point_masses.push_back({kCastingMass, kGripperMount});
 
   std::vector<PartSpec> parts = {lever, arm};
   if (!chain) {
@@ -39,7 +41,7 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
     rocker.lever = links.lever;
     rocker.lever.length_m = g.b0_m;
     rocker.label = "part 'rocker' (rocker 3)";
-    rocker.attachments = {"rocker", nullptr, {{"B0", "bore_A0", pin}, {"B", "bore_A", pin}}, {}, {}};
+    rocker.attachments = {kRocker, nullptr, {{kJointB0, kBoreA0, pin}, {kJointB, kBoreA, pin}}, {}, {}};
     parts.push_back(rocker);
   }
   for (const auto& p : parts) {

@@ -79,7 +79,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   }
 
   post::BodyWriter& body = writer.add_body(part.body(), supported.mesh);
-  body.begin_series({{"displacement", "m", 3, post::kVectorComponents}, {"von_mises", "Pa", 1, {}}});
+  body.begin_series({{post::layout::kDisplacement, "m", 3, post::kVectorComponents}, {post::layout::kVonMises, "Pa", 1, {}}});
   PartSummary ps;
   ps.body = part.body();
   ps.nodes = supported.mesh.node_count();
@@ -88,12 +88,12 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     if (step < motion.size()) {
       if (keep_steps)
         history->step_stress_pa.col(Eigen::Index(step)) = Eigen::Map<const Eigen::VectorXd>(s.stress_pa.data(), s.stress_pa.size());
-      if (written(step)) body.write_step(motion[step].t, {{"displacement", u}, {"von_mises", s.von_mises_pa}});
+      if (written(step)) body.write_step(motion[step].t, {{post::layout::kDisplacement, u}, {post::layout::kVonMises, s.von_mises_pa}});
       return;
     }
-    body.write_static("static_displacement", "m", u, post::kVectorComponents);
-    body.write_static("static_von_mises", "Pa", s.von_mises_pa);
-    body.write_static("static_stress", "Pa", s.stress_pa, post::kVoigtComponents);
+    body.write_static(post::layout::static_name(post::layout::kDisplacement), "m", u, post::kVectorComponents);
+    body.write_static(post::layout::static_name(post::layout::kVonMises), "Pa", s.von_mises_pa);
+    body.write_static(post::layout::static_name(post::layout::kStress), "Pa", s.stress_pa, post::kVoigtComponents);
     ps.has_static_study = true;
     ps.static_von_mises_pa = s.von_mises_pa.maxCoeff();
     ps.static_displacement_m = fem::displacement_magnitude(u).maxCoeff();
@@ -106,8 +106,8 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   std::vector<double> step_times;
   if (!options.callback_steps.empty())
     for (const auto& frame : motion) step_times.push_back(frame.t);
-  body.write_envelope("von_mises", "Pa", env.max_von_mises_pa, vm_step, "max", step_times);
-  body.write_envelope("displacement_magnitude", "m", env.max_displacement_m, u_step, "max", step_times);
+  body.write_envelope(post::layout::kVonMises, "Pa", env.max_von_mises_pa, vm_step, post::layout::kEnvelopeMax, step_times);
+  body.write_envelope(post::layout::kDisplacementMagnitude, "m", env.max_displacement_m, u_step, post::layout::kEnvelopeMax, step_times);
 
   ps.peak_von_mises_pa = env.peak_von_mises_pa;
   ps.peak_von_mises_time_s = motion[size_t(env.peak_von_mises_step)].t;

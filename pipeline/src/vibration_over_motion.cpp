@@ -33,7 +33,7 @@ constexpr double kMaxWindowS = 30.0;           // and at most this long (s)
 
 std::vector<std::string> mode_names(int m) {
   std::vector<std::string> names;
-  for (int i = 1; i <= m; ++i) names.push_back(fmt::format("mode_{}", i));
+  for (int i = 1; i <= m; ++i) names.push_back(post::layout::mode_name(i));
   return names;
 }
 
@@ -64,11 +64,11 @@ void write_mode_shapes(post::ResultsWriter& writer, const std::string& prefix,
     double largest = 0.0;
     for (const auto& f : fields) largest = std::max(largest, f.rowwise().norm().maxCoeff());
     if (!(largest > 0)) largest = 1.0;
-    const std::string name = fmt::format("mode_{}", i + 1);
+    const std::string name = post::layout::mode_name(i + 1);
     for (size_t p = 0; p < parts.size(); ++p) {
       const post::FieldMatrix shape = fields[p] / largest;
       bodies[p]->write_static(name, post::layout::kDimensionless, shape, post::kVectorComponents);
-      bodies[p]->write_static(name + "_magnitude", post::layout::kDimensionless, shape.rowwise().norm());
+      bodies[p]->write_static(post::layout::magnitude_name(name), post::layout::kDimensionless, shape.rowwise().norm());
     }
   }
 }
@@ -344,9 +344,9 @@ VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
   writer.write_table(post::layout::kVibrationDampingRatio, post::layout::kDimensionless, scalar(zeta));
   if (static_modes) {
     writer.write_table(post::layout::kVibrationStaticFrequency, "Hz", post::FieldMatrix(static_modes->frequency_hz));
-    write_mode_shapes(writer, std::string(post::layout::kVibrationBodyPrefix) + "static.", parts, model, modes, *static_modes, *static_pose);
+    write_mode_shapes(writer, post::layout::kVibrationStaticBodyPrefix, parts, model, modes, *static_modes, *static_pose);
   }
-  write_mode_shapes(writer, std::string(post::layout::kVibrationBodyPrefix) + "lowest.", parts, model, modes, pose_modes[size_t(lowest_pose)],
+  write_mode_shapes(writer, post::layout::kVibrationLowestBodyPrefix, parts, model, modes, pose_modes[size_t(lowest_pose)],
                     motion[size_t(lowest_pose)]);
   return summary;
 }

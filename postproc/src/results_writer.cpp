@@ -26,6 +26,9 @@ namespace kinetofem::post {
 
 namespace layout {
 std::string block_name(size_t index) { return fmt::format("block_{}", index); }
+std::string static_name(const std::string& field) { return kStaticPrefix + field; }
+std::string magnitude_name(const std::string& field) { return field + kMagnitudeSuffix; }
+std::string mode_name(int i) { return kModePrefix + std::to_string(i); }
 }  // namespace layout
 
 namespace {

@@ -135,6 +135,12 @@ inline constexpr const char* kEnvelopeMax = "max";
 
 // "block_<i>", the group of element block i (blocks keep their order).
 std::string block_name(size_t index);
+// "static_<field>": the static field that holds a series field at the static pose.
+std::string static_name(const std::string& field);
+// "<field>_magnitude": the magnitude of a vector field.
+std::string magnitude_name(const std::string& field);
+// "mode_<i>", i from 1: a mode shape's static field (and the mode's column name).
+std::string mode_name(int i);
 }  // namespace layout
 
 }  // namespace kinetofem::post
