@@ -48,7 +48,7 @@ std::vector<CheckRow> patch_test(ElementType type) {
 
 std::vector<CheckRow> patch_tests(const CheckContext&) {
   std::vector<CheckRow> rows;
-  for (ElementType type : {ElementType::Tet4, ElementType::Tet10, ElementType::Hex8, ElementType::Hex20})
+  for (ElementType type : fem::all_element_types)
     for (auto& row : patch_test(type)) rows.push_back(std::move(row));
   return rows;
 }

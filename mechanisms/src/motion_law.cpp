@@ -56,13 +56,21 @@ std::string TrapezoidalLaw::describe() const {
 
 // ---- cycloidal --------------------------------------------------------------
 
-CycloidalLaw::CycloidalLaw(double stroke, double duration_s) : stroke_(stroke), duration_(duration_s) {
-  require_positive(duration_s, "cycloidal duration");
+RestToRestLaw::RestToRestLaw(double stroke, double duration_s, const char* what)
+    : stroke_(stroke), duration_(duration_s) {
+  require_positive(duration_s, what);
 }
 
-MotionState CycloidalLaw::at(double t) const {
+MotionState RestToRestLaw::at(double t) const {
   if (t <= 0.0) return {0.0, 0.0, 0.0};
   if (t >= duration_) return {stroke_, 0.0, 0.0};
+  return during(t);
+}
+
+CycloidalLaw::CycloidalLaw(double stroke, double duration_s)
+    : RestToRestLaw(stroke, duration_s, "cycloidal duration") {}
+
+MotionState CycloidalLaw::during(double t) const {
   constexpr double two_pi = 2.0 * std::numbers::pi;
   const double tau = t / duration_;
   const double h = stroke_, T = duration_;
@@ -76,13 +84,10 @@ std::string CycloidalLaw::describe() const {
 
 // ---- 3-4-5 polynomial -------------------------------------------------------
 
-Polynomial345Law::Polynomial345Law(double stroke, double duration_s) : stroke_(stroke), duration_(duration_s) {
-  require_positive(duration_s, "3-4-5 polynomial duration");
-}
+Polynomial345Law::Polynomial345Law(double stroke, double duration_s)
+    : RestToRestLaw(stroke, duration_s, "3-4-5 polynomial duration") {}
 
-MotionState Polynomial345Law::at(double t) const {
-  if (t <= 0.0) return {0.0, 0.0, 0.0};
-  if (t >= duration_) return {stroke_, 0.0, 0.0};
+MotionState Polynomial345Law::during(double t) const {
   const double x = t / duration_, h = stroke_, T = duration_;
   const double x2 = x * x, x3 = x2 * x;
   return {h * (10.0 * x3 - 15.0 * x3 * x + 6.0 * x3 * x2), h / T * (30.0 * x2 - 60.0 * x3 + 30.0 * x3 * x),

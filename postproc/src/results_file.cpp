@@ -17,15 +17,13 @@ std::string names_or_none(const std::vector<std::string>& names) {
 std::string join(const std::string& a, const std::string& b) { return a + "/" + b; }
 
 fem::ElementType element_type_named(const std::string& name, const std::string& where) {
-  for (auto type : {fem::ElementType::Tet4, fem::ElementType::Tet10, fem::ElementType::Hex8,
-                    fem::ElementType::Hex20})
+  for (auto type : fem::all_element_types)
     if (name == fem::name_of(type)) return type;
   fail("unknown element type '{}' at '{}'", name, where);
 }
 
 fem::FaceType face_type_named(const std::string& name, const std::string& where) {
-  for (auto type :
-       {fem::FaceType::Tri3, fem::FaceType::Tri6, fem::FaceType::Quad4, fem::FaceType::Quad8})
+  for (auto type : fem::all_face_types)
     if (name == fem::name_of(type)) return type;
   fail("unknown face type '{}' at '{}'", name, where);
 }

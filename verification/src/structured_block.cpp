@@ -19,7 +19,7 @@ using fem::Index;
 using Lattice = std::array<int, 3>;
 
 bool is_quadratic(ElementType type) {
-  return type == ElementType::Hex20 || type == ElementType::Tet10;
+  return fem::element_facts(type).nodes > fem::element_facts(type).corners;
 }
 
 // Parameter values of the lattice points along one direction: cell ends by a

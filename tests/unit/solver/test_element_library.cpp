@@ -10,9 +10,8 @@
 namespace kinetofem::fem {
 namespace {
 
-const ElementType kAllTypes[] = {ElementType::Tet4, ElementType::Tet10, ElementType::Hex8,
-                                 ElementType::Hex20};
-const FaceType kAllFaces[] = {FaceType::Tri3, FaceType::Tri6, FaceType::Quad4, FaceType::Quad8};
+constexpr const auto& kAllTypes = all_element_types;
+constexpr const auto& kAllFaces = all_face_types;
 
 Eigen::Vector3d interior_point(ElementType type) {
   return corner_nodes(type) == 4 ? Eigen::Vector3d(0.21, 0.17, 0.33)
@@ -86,8 +85,9 @@ TEST(Quadrature, IntegratesReferenceVolumeAndPolynomials) {
     }
     // Exact: tet volume 1/6, int xi eta = 1/120; cube [-1,1]^3 volume 8, int xi eta = 0.
     EXPECT_NEAR(volume, tet ? 1.0 / 6.0 : 8.0, 1e-14) << name_of(type);
-    if (type != ElementType::Tet4)
+    if (type != ElementType::Tet4) {
       EXPECT_NEAR(second_moment, tet ? 1.0 / 120.0 : 0.0, 1e-14) << name_of(type);
+    }
   }
   // The degree-3 load rule of tetrahedra: int xi^2 eta = 2!1!/6! = 1/360.
   double cubic = 0;

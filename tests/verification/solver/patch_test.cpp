@@ -132,8 +132,7 @@ TEST_P(PatchTest, ConstantStressFromSurfaceTractions) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Elements, PatchTest,
-                         ::testing::Values(ElementType::Tet4, ElementType::Tet10, ElementType::Hex8,
-                                           ElementType::Hex20),
+                         ::testing::ValuesIn(all_element_types),
                          [](const auto& info) { return std::string(name_of(info.param)); });
 
 }  // namespace

@@ -59,28 +59,40 @@ class TrapezoidalLaw final : public MotionLaw {
   double stroke_, duration_, t_accel_, t_decel_, speed_, accel_, decel_;
 };
 
-class CycloidalLaw final : public MotionLaw {
+// A rise of `stroke` in `duration` seconds from rest to rest: s = 0 before
+// t = 0 and s = stroke after t = duration, both at rest; a derived law gives
+// the motion in between.
+class RestToRestLaw : public MotionLaw {
  public:
-  CycloidalLaw(double stroke, double duration_s);
-  MotionState at(double t) const override;
-  double stroke() const override { return stroke_; }
-  double duration() const override { return duration_; }
-  std::string describe() const override;
+  MotionState at(double t) const final;
+  double stroke() const final { return stroke_; }
+  double duration() const final { return duration_; }
 
- private:
+ protected:
+  // Throws unless duration_s > 0; `what` names the law in the message.
+  RestToRestLaw(double stroke, double duration_s, const char* what);
+  // The motion at 0 < t < duration.
+  virtual MotionState during(double t) const = 0;
+
   double stroke_, duration_;
 };
 
-class Polynomial345Law final : public MotionLaw {
+class CycloidalLaw final : public RestToRestLaw {
  public:
-  Polynomial345Law(double stroke, double duration_s);
-  MotionState at(double t) const override;
-  double stroke() const override { return stroke_; }
-  double duration() const override { return duration_; }
+  CycloidalLaw(double stroke, double duration_s);
   std::string describe() const override;
 
  private:
-  double stroke_, duration_;
+  MotionState during(double t) const override;
+};
+
+class Polynomial345Law final : public RestToRestLaw {
+ public:
+  Polynomial345Law(double stroke, double duration_s);
+  std::string describe() const override;
+
+ private:
+  MotionState during(double t) const override;
 };
 
 // s = s0 + v*t for every t (no dwell). duration() is +infinity.
