@@ -168,7 +168,7 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
       o.drives.push_back({c.text_value("motion_drive[].name", k), stiffness});
     }
   for (std::size_t k = 0; k < c.count("assembly_point"); ++k) {
-    structure::TrackedPoint p{c.text_value("assembly_point[].name", k), c.text_value("assembly_point[].body", k),
+    structure::AssemblyPoint p{c.text_value("assembly_point[].name", k), c.text_value("assembly_point[].body", k),
                               c.text_value("assembly_point[].point", k),
                               c.has("assembly_point[].face", k) ? c.text_value("assembly_point[].face", k) : std::string()};
     // Wrong names list the names that exist, as everywhere in a linkage case.

@@ -82,7 +82,7 @@ std::string drive_effort_unit(const mech::MultibodyModel& m, std::size_t drive) 
 }
 
 
-Eigen::Vector2d point_in_world(const mech::MultibodyModel& model, const mech::Frame& frame, const TrackedPoint& point) {
+Eigen::Vector2d point_in_world(const mech::MultibodyModel& model, const mech::Frame& frame, const PathPoint& point) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (model.bodies[b].name != point.body) continue;
     Eigen::Vector2d local = Eigen::Vector2d::Zero();
@@ -98,7 +98,7 @@ Eigen::Vector2d point_in_world(const mech::MultibodyModel& model, const mech::Fr
 }
 
 void write_mechanism_histories(post::ResultsWriter& writer, const mech::MultibodyModel& model,
-                               const mech::Results& results, const std::vector<TrackedPoint>& tracked) {
+                               const mech::Results& results, const std::vector<PathPoint>& tracked) {
   require(!results.frames.empty(), "no output frames to write as histories");
   std::vector<double> times;
   for (const auto& f : results.frames) times.push_back(f.t);

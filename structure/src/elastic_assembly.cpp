@@ -508,7 +508,7 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
     drives.push_back(dd);
   }
 
-  for (const TrackedPoint& tp : options.points) {
+  for (const AssemblyPoint& tp : options.points) {
     PointData pd;
     const std::string who = fmt::format("tracked point '{}'", tp.name);
     pd.body = body_index(tp.body, who);

@@ -58,7 +58,7 @@ namespace kinetofem::driver {
 using pipeline::DynamicsSettings;
 using pipeline::PartSpec;
 using pipeline::PartSummary;
-using pipeline::TrackedPoint;
+using pipeline::PathPoint;
 
 struct MotionStressCase {
   std::string label;                 // for messages: the case file
@@ -72,7 +72,7 @@ struct MotionStressCase {
   fem::IsotropicMaterial material;   // of every part
   meshes::MeshOptions mesh;
   loads::LinkStressOptions stress;
-  std::vector<TrackedPoint> tracked_points;  // written as point.<body>.<point> paths
+  std::vector<PathPoint> tracked_points;  // written as point.<body>.<point> paths
   // The elastic assembly (step 8); empty: not run. Its chains' EA, drives'
   // stiffness and points (e.g. the gripper point H with its face set).
   std::optional<structure::AssemblyOptions> assembly;

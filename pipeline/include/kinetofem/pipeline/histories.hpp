@@ -21,15 +21,17 @@
 
 namespace kinetofem::pipeline {
 
-struct TrackedPoint {
-  std::string body, point;  // a named point of the body ("origin" allowed)
+// A named point of a body ("origin" allowed) whose path is written as the
+// histories point.<body>.<point>.* (position, velocity, acceleration).
+struct PathPoint {
+  std::string body, point;
 };
 
 void write_mechanism_histories(post::ResultsWriter& writer, const mech::MultibodyModel& model,
-                               const mech::Results& results, const std::vector<TrackedPoint>& tracked = {});
+                               const mech::Results& results, const std::vector<PathPoint>& tracked = {});
 
 // World position of a body point in a frame, m.
-Eigen::Vector2d point_in_world(const mech::MultibodyModel& model, const mech::Frame& frame, const TrackedPoint& point);
+Eigen::Vector2d point_in_world(const mech::MultibodyModel& model, const mech::Frame& frame, const PathPoint& point);
 
 // "N*m" for a drive on an angle, "N" on a displacement (drive index as in
 // mech::Frame::drives: motion drives, then force drives).

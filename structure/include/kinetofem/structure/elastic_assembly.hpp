@@ -91,8 +91,9 @@ struct DriveHold {
   double torsional_stiffness_nm_per_rad = kRigid;  // >= 0; kRigid: a constraint
 };
 
-// A point whose displacement is reported (e.g. the gripper point H).
-struct TrackedPoint {
+// A point of the assembly whose elastic displacement, split and compliance
+// are reported (e.g. the gripper point H; a case's [[assembly_point]]).
+struct AssemblyPoint {
   std::string name;
   std::string body;
   std::string point = "origin";  // named point of the body (body frame)
@@ -114,7 +115,7 @@ struct AssemblyOptions {
   BoreCoupling coupling = BoreCoupling::Distributing;
   std::vector<ChainMember> chains;
   std::vector<DriveHold> drives;
-  std::vector<TrackedPoint> points;
+  std::vector<AssemblyPoint> points;
   fem::StaticSolverOptions solver;
   // |resultant of a part's loads - its multibody body's applied minus inertia
   // loads| relative to their size; above: Error. Infinity: no check.
