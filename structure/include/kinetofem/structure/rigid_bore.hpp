@@ -5,72 +5,10 @@
 // that swapping the coupling type swaps the matrices G, Z_G, F and adds one
 // load correction per block of poses.
 //
-// Model (body frame of the part; m, N, N m, rad)
-//   Every node n of the interface's face set S moves rigidly with the
-//   interface reference point x_ref:  u_n = t + theta x (x_n - x_ref), i.e.
-//   B u = T q with B the selection of the face nodes' DoFs (3k x 3N), T the
-//   rigid map (rows [I, -skew(x_n - x_ref)], 3k x 6) and q = (t, theta). The
-//   face nodes carry reactions r (3k, N) whose resultant is the interface
-//   load lambda = T^T r = (force; moment about x_ref).
-//
-// Condensation (K_s: the part with its 3-2-1 support, factorized once;
-// Z_f = K_s^-1 f the load displacement of a pose)
-//   F_SS = B K_s^-1 B^T                  face flexibility (3k x 3k, SPD;
-//                                        all bores' face nodes stacked)
-//   d_S  = B Z_f
-//   F_r  = (T^T F_SS^-1 T)^-1            interface flexibility (6m x 6m)
-//   H    = F_SS^-1 T F_r                 reactions of unit interface loads
-//   D    = B^T H                         nodal loads of unit interface loads
-//                                        (3N x 6m, nonzero on face nodes only;
-//                                        a column loads every bore: its unit
-//                                        load on its own, self-equilibrated
-//                                        reactions on the others)
-//   interface motion  q = F_r lambda + D^T Z_f + R alpha   (as G^T Z_f)
-//   reactions         r = H lambda - W d_S,  W = F_SS^-1 - H T^T F_SS^-1
-//   field             u = Z_D lambda + Z_f + c(f) (+ rigid motion),
-//                     Z_D = K_s^-1 D,  c(f) = -K_s^-1 B^T W B Z_f.
-//   D^T c = 0, so d = D^T (Z_f + c) = D^T Z_f: the corrected load
-//   displacement can replace Z_f everywhere. W is symmetric, so F_r, and
-//   D^T Z_D = F_r, are symmetric.
-//   Why exact: the reactions r minimise r^T F_SS r under T^T r = lambda (the
-//   rigid constraint is that minimum's stationarity condition), so F_r <= F
-//   of any other statically equivalent distribution, the distributing
-//   coupling's included (Loewner order, same support).
-//
-// Details
-//   * Several interfaces on ONE face set (a joint and its drive) share one
-//     bore: the bore's motion q_b is that of the first one's reference, the
-//     others' are rigid transfers q_l = X_l q_b, and its load is sum X_l^T
-//     lambda_l. Their rows of F_r then differ by X_l (F_r is singular: they
-//     move as one rigid body). Distinct face sets must not share nodes
-//     (Error naming both).
-//   * DoFs of face nodes held by the support (a 3-2-1 support picks extreme
-//     nodes, often on an end bore) have K_s^-1 rows of zero: they are
-//     dropped from B (the free face DoFs, F_SS stays SPD) and their
-//     constraint rows T_p q = 0 are kept exactly by the projected inverse
-//     F_r = A^-1 - A^-1 T_p^T (T_p A^-1 T_p^T)^-1 T_p A^-1, A = T_f^T
-//     F_SS^-1 T_f (the (1,1) block of [A T_p^T; T_p 0]^-1). F_r is then
-//     positive SEMIdefinite with one zero eigenvalue per held face DoF (in
-//     the support's gauge the bore cannot move there); the physics after
-//     adding R alpha is the same. D also carries those DoFs' reactions, so
-//     each column of D is statically equivalent to its unit load. Choosing
-//     the support's candidates off the bores (rigid_bore_support_candidates)
-//     keeps F_r positive definite.
-//   * Supports must prescribe zero (Error otherwise).
-//   * Mixed with distributing interfaces (e.g. a tracked point that should
-//     not stiffen its face): their G columns are loads like f, so their
-//     Z = K_s^-1 G + correction(K_s^-1 G); the flexibility of all of them is
-//     [D G]^T [Z_D Z] (symmetric; unit-tested).
-//
-// Cost (k_f free face DoFs, m interfaces, b bores, N nodes, P poses)
-//   setup: k_f + 6 b solves (in chunks of `chunk_columns`), one dense
-//   Cholesky of F_SS (k_f^3 / 3 flops), O(k_f^2 b) for H; memory about 2 x
-//   3N x chunk doubles for a chunk (plus the solver's copies), 2 k_f^2 for
-//   F_SS and its factor, 2 x 3N x 6m for D and Z_D (as G and Z_G); never a
-//   3N x k_f matrix. Per block of P poses: one block solve of P columns and
-//   O(k_f^2 P) for the correction. The k_f solves dominate: measured 1.4 to
-//   2.3 ms per column at nnz(L) 3.6e6 (12 339 DoFs), 19 to 23 ms at nnz(L)
-//   5.1e7 (89 463 DoFs, 3 bores, 1527 face DoFs: 28 s), on 2 shared cores.
+// Frame and units: the part's body frame; m, N, N m, rad. The model (B u = T q
+// on each bore's face nodes), the condensation (F_SS, F_r, H, D, W and the
+// load correction c(f)), why it is exact, held face DoFs, several interfaces
+// on one bore, and the cost: docs/elastic_assembly.md, "The rigid-bore coupling".
 //
 // Ownership: the analysis and the mesh are referenced, not copied; both
 // must outlive this object. correction() solves with the analysis (non-const).
