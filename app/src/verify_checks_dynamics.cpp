@@ -22,26 +22,26 @@ std::vector<CheckRow> pendulum_period(const CheckContext&) {
   return {compare_relative("compound pendulum, 60 deg: period (IDAS)", "T = 4 sqrt(I_O/(m g d)) K(sin(a/2))", "s",
                            run.exact_period_s, run.computed_period_s, 1e-7, "IDAS rtol 1e-10 -> ~1e-9; 1e-7 allowed"),
           compare_absolute("compound pendulum: constraint drift / length", "Phi(q) = 0", "1", 0.0,
-                           summary.max_drift_relative, 1e-8, "issue 3: 1e-8 of the characteristic length"),
+                           summary.max_drift_relative, 1e-8, "required: 1e-8 of the characteristic length"),
           compare_absolute("compound pendulum: energy balance error", "dT + dV = 0 (conservative)", "1", 0.0,
                            summary.energy_balance_error, 1e-8, "relative to the energy scale at rtol 1e-10")};
 }
 
 std::vector<CheckRow> idas_vs_cvodes(const CheckContext&) {
   const kv::PendulumAgreement agreement = kv::idas_vs_cvodes({}, 1.2);
-  // Two independent formulations: agreement to 1e-6 relative (issue 3).
+  // Two independent formulations: agreement to 1e-6 relative.
   return {compare_absolute("pendulum 1.2 rad: IDAS vs CVODES angle / amplitude", "agreement of two formulations", "1",
-                           0.0, agreement.angle, 1e-6, "issue 3: 1e-6 relative"),
+                           0.0, agreement.angle, 1e-6, "required: 1e-6 relative"),
           compare_absolute("pendulum 1.2 rad: IDAS vs CVODES pivot force / weight", "agreement of two formulations",
-                           "1", 0.0, agreement.force, 1e-6, "issue 3: 1e-6 relative")};
+                           "1", 0.0, agreement.force, 1e-6, "required: 1e-6 relative")};
 }
 
 std::vector<CheckRow> lever_chain_multibody(const CheckContext&) {
   const kv::ClosedFormAgreement agreement = kv::lever_chain_multibody_vs_closed_form();
   return {compare_absolute("lever-chain multibody vs closed form: dpsi", "SPEC §1 (4)-(7)", "rad", 0.0,
-                           agreement.worst_angle_rad, kv::kClosedFormTolerance, "issue 3: 1e-9"),
+                           agreement.worst_angle_rad, kv::kClosedFormTolerance, "required: 1e-9"),
           compare_absolute("lever-chain multibody vs closed form: C and H", "SPEC §1 (12), (15)", "m", 0.0,
-                           agreement.worst_point_m, kv::kClosedFormTolerance, "issue 3: 1e-9")};
+                           agreement.worst_point_m, kv::kClosedFormTolerance, "required: 1e-9")};
 }
 
 }  // namespace
