@@ -20,12 +20,9 @@ void Progress::advance(long done) {
   const auto now = std::chrono::steady_clock::now();
   const double since_report = std::chrono::duration<double>(now - last_report_).count();
   if (since_report < interval_s_ || done >= total_) return;
-  last_report_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (done < kMinItemsForEstimate || elapsed < kMinSecondsForEstimate) {
-    log_.info("  {} {}/{}: {:.1f} s elapsed", task_, done, total_, elapsed);
-    return;
-  }
+  if (done < kMinItemsForEstimate || elapsed < kMinSecondsForEstimate) return;  // no estimate yet: no line
+  last_report_ = now;
   const double remaining = elapsed * double(total_ - done) / double(done);
   log_.info("  {} {}/{}: {:.1f} s elapsed, ~{:.1f} s left", task_, done, total_, elapsed,
             remaining);

@@ -47,11 +47,11 @@ class Log {
 };
 
 // Reports progress of a counted task ("time steps 37/100, 1.2 s elapsed,
-// ~2.0 s left") at most every `interval_s` seconds, and once at the end. The
-// time left is extrapolated from the items done only once there are at least
-// two of them and a second has passed: the first item often carries the
-// task's setup (a factorization, a first solve) and would make the estimate
-// far too long.
+// ~2.0 s left") at most every `interval_s` seconds, and once at the end. A
+// line is printed only once the time left can be extrapolated from the items
+// done: at least two of them and a second passed. The first item often
+// carries the task's setup (a factorization, a first solve) and alone would
+// make the estimate far too long.
 class Progress {
  public:
   Progress(const Log& log, std::string task, long total, double interval_s = 2.0);
