@@ -1,7 +1,7 @@
 // Stage "one factorization per part" (pipeline/part_factorization.hpp):
 // side by side (one BLAS thread each) gives the same factors as one after the
 // other. Reference: the sequential factorization of the same parts; required
-// (issue 13): factor statistics bit for bit. The solutions agree to round-off
+// by the docs: factor statistics bit for bit. The solutions agree to round-off
 // only: one after the other runs on two BLAS threads, side by side on one, and
 // OpenBLAS splits its dense kernels differently (measured: up to 1.8e-11 of the
 // peak on these beams); required 1e-9 of the peak, far below any discretization

@@ -42,7 +42,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kTolerance = 1e-4;  // issue 14, verification 4: first five frequencies, relative
+constexpr double kTolerance = 1e-4;  // docs/vibration.md, verification 4: first five frequencies, relative
 
 Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
 

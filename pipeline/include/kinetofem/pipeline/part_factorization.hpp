@@ -1,7 +1,8 @@
 #pragma once
-// Stage "one factorization per part": every part's stiffness with its 3-2-1
-// support (SupportedPart) assembled, analysed and factorized once for the
-// whole motion; the per-part stress and the elastic assembly share them.
+// How the parts' factorizations are made (PartFactors, part_factors.hpp, owns
+// and lends them): every part's stiffness with its 3-2-1 support
+// (SupportedPart) assembled, analysed and factorized once for the whole
+// motion; the per-part stress, the elastic assembly and the vibration borrow them.
 //
 // Both cores busy: CHOLMOD 3.0 has no tree-level parallelism and two BLAS
 // threads speed one supernodal factorization up by only about 1.4x, so

@@ -1,5 +1,5 @@
 #pragma once
-// Stage "fatigue over the work cycle" for one part (issue 15): from the
+// Stage "fatigue over the work cycle" for one part: from the
 // part's nodal stress at every output time of the motion (PartStressHistory,
 // kept by analyse_part_over_motion), per node
 //   1. the stress history reduced to a scalar: the normal stress on the

@@ -1,6 +1,6 @@
 #pragma once
-// Stage "the vibration of the manipulator over the motion" (issue 14,
-// docs/vibration.md): the natural frequencies of the elastic assembly in
+// Stage "the vibration of the manipulator over the motion"
+// (docs/vibration.md): the natural frequencies of the elastic assembly in
 // every pose (vibration/assembly_modes.hpp: one Craig-Bampton reduction per
 // part, one small eigenproblem per pose) and the elastic vibration of the
 // tracked points (the gripper point H) that the motion's inertia and weight
