@@ -1,7 +1,8 @@
 #pragma once
 // The motion-to-stress pipeline for any planar linkage whose bodies may carry
-// FE parts: the driver that runs the stages (pipeline/, structure/) in
-// order. The SPEC §1/§2 manipulators are presets of it
+// FE parts: the driver that runs the stages of pipeline/ in order (it holds
+// no factor or memory logic: PartFactors owns every part's factorization).
+// The SPEC §1/§2 manipulators are presets of it
 // (app/src/manipulator_job.cpp builds their MotionStressCase from their
 // keys), the `linkage` case type another.
 //
@@ -10,15 +11,17 @@
 //     2. build_part_models             mesh and place every part
 //     3. apply_mass_properties         bodies get their parts' mass properties
 //        check_part_against_model      face sets, size, joint points in bores
+//        check_results_fit_disk        the results file fits the free space
 //     4. run_dynamics                  the motion with the real masses
 //     5. solve_static_pose             the pose study at rest (when asked)
-//     6. analyse_part_over_motion      per part: loads, one factorization,
-//                                      block solves, stress, envelopes;
-//        ElasticAssembly::set_up_part  then (assembly asked) the part's
+//     6. PartFactors                   every part analysed; factorized side by
+//                                      side when the factors fit together
+//        begin_elastic_assembly        the assembly's topology and checks (when asked)
+//        analyse_part_with_factors     per part: loads, block solves with its
+//                                      lent factor, stress, envelopes;
+//        set_up_assembly_part          then (assembly asked) the part's
 //                                      interface and load-pattern solves on
-//                                      the same factor, which is freed unless
-//                                      the vibration needs it (the assembly's
-//                                      topology and checks come before step 6)
+//                                      the same factor, freed after its last user
 //        assess_part_fatigue           per part (when asked): rainflow, Miner,
 //                                      life per node over the work cycle
 //     7. write_mechanism_histories     bodies, joints, drives, chains, points
