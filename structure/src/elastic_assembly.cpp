@@ -322,6 +322,75 @@ struct ElasticAssembly::Impl {
   // interface_load_displacement: per part G^T Z_f (6m, body axes).
   PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& interface_load_displacement,
                           const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs);
+  // Unknowns of a pose system, in this order: interface displacements u (6M,
+  // world axes), interface loads lambda (6M, world axes), rigid motions alpha
+  // of the moving bodies (6B, about their origins), constraint multipliers mu
+  // (one per constraint row); ou, ol, oa, om are where each block starts.
+  struct PoseLayout {
+    int M = 0, B = 0, nc = 0;
+    int ou = 0, ol = 0, oa = 0, om = 0, n = 0;
+  };
+  // Reference sizes of a pose: P the largest load resultant (N; moments in
+  // N m divided by length_scale), U = largest compliance * P (m).
+  struct PoseScales {
+    double P = 1.0, U = 0.0;
+  };
+  // The pose system A x = rhs in physical units (rows (a) to (d) below).
+  struct PoseSystem {
+    Eigen::MatrixXd A;
+    Eigen::VectorXd rhs;
+  };
+  // The solved pose system: x = Dc y with (Dr A Dc) y = Dr rhs, and the LU
+  // factor of Dr A Dc, kept for further right-hand sides (unit loads).
+  struct PoseUnknowns {
+    PoseLayout at;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu;
+    Eigen::VectorXd Dr, Dc, x;
+    int rank = 0;
+    double residual = 0.0;
+    // Displacement of interface k (world axes); zero for the ground (k < 0).
+    Vector6d u_of(int k) const { return k >= 0 ? Vector6d(x.segment<6>(at.ou + 6 * k)) : Vector6d::Zero(); }
+    // Load on interface k (world axes); zero for the ground (k < 0).
+    Vector6d lambda_of(int k) const { return k >= 0 ? Vector6d(x.segment<6>(at.ol + 6 * k)) : Vector6d::Zero(); }
+  };
+  // Layout of the unknowns of a pose with these members.
+  PoseLayout layout_of(const PoseMembers& members) const;
+  // Scales of a pose: the largest translational compliance (parts, chains,
+  // drives; m/N) and the largest load resultant of a moving body.
+  PoseScales scales_of(const PoseMembers& members, const std::vector<Vector6d>& resultant_world) const;
+  // Assembles A and rhs of a pose (world axes, physical units).
+  PoseSystem assemble_pose_system(const Pose& pose, const PoseMembers& members, const PoseLayout& at,
+                                  const std::vector<Eigen::VectorXd>& interface_load_displacement,
+                                  const std::vector<Vector6d>& resultant_world) const;
+  // Solves the pose system scaled to physical units (U, P, length_scale), then
+  // Ruiz-equilibrated, by full-pivoting LU; a rank below n is an error naming
+  // the free motion.
+  PoseUnknowns solve_equilibrated(const mech::Frame& frame, const Pose& pose, const PoseMembers& members,
+                                  const PoseLayout& at, const PoseScales& scales, const PoseSystem& system) const;
+  // The rigid motion (world axes, about the origin) of every moving body.
+  void add_body_motions(PoseSolution& out, const PoseUnknowns& solved) const;
+  // The loads of every joint and the results of every chain; a chain that
+  // would push (tension not above 1e-9 P) is an error.
+  void add_joint_loads(PoseSolution& out, const mech::Frame& frame, const Pose& pose, const PoseMembers& members,
+                       const PoseUnknowns& solved, double P) const;
+  // Joint j's loads on both ends from the interface loads of a held joint;
+  // the ground's side carries the reaction of the other.
+  JointLoad held_joint_load(JointLoad jl, const JointData& jd, const Pose& pose, const PoseUnknowns& solved) const;
+  // The twist and moment of every drive.
+  void add_drive_results(PoseSolution& out, const PoseUnknowns& solved) const;
+  // The tracked points' motion and, with unit_load_split, their compliance
+  // and each part's and spring's share of their displacement.
+  void add_point_results(PoseSolution& out, const Pose& pose, const PoseMembers& members,
+                         const PoseUnknowns& solved) const;
+  // Unit-load method for point pr at interface k: the factorized system with
+  // a unit force at the point alone gives the virtual loads of every element
+  // (interface loads lambda_v, spring forces k g u_v); their work on the real
+  // solution is each element's contribution.
+  void split_by_unit_loads(PointResult& pr, int k, const Pose& pose, const PoseMembers& members,
+                           const PoseUnknowns& solved) const;
+  // What the fields need (add_fields): per part its interface loads and rigid
+  // motion in body axes.
+  void collect_field_inputs(const Pose& pose, const PoseUnknowns& solved, FieldInputs& field_inputs) const;
   // The parts' fields of a block of solved poses: u = Z_G lambda + Z_f +
   // rigid, von Mises from S_G lambda + S_p c (superposed) or recovered, as
   // block products over the poses (not one matrix-vector product per pose).
@@ -754,31 +823,48 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
   return out;
 }
 
-PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
-                                               const std::vector<Eigen::VectorXd>& interface_load_displacement,
-                                               const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
-  Stopwatch clock;
-  const Pose pose = pose_of(frame);
-  const int M = int(interfaces.size()), B = moving_count;
+namespace {
+
+// Ruiz equilibration of As (at most 30 sweeps, until every row and column
+// maximum is within 1e-3 of 1); Dr and Dc take on the row and column scalings.
+void ruiz_equilibrate(Eigen::MatrixXd& As, Eigen::VectorXd& Dr, Eigen::VectorXd& Dc) {
+  const Eigen::Index n = As.rows();
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::VectorXd rmax = As.cwiseAbs().rowwise().maxCoeff(),
+                          cmax = As.cwiseAbs().colwise().maxCoeff().transpose();
+    double worst = 0.0;
+    Eigen::VectorXd sr(n), sc(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      sr(i) = rmax(i) > 0 ? 1.0 / std::sqrt(rmax(i)) : 1.0;
+      sc(i) = cmax(i) > 0 ? 1.0 / std::sqrt(cmax(i)) : 1.0;
+      worst = std::max({worst, std::abs(1.0 - rmax(i)), std::abs(1.0 - cmax(i))});
+    }
+    if (worst < 1e-3) break;
+    As = sr.asDiagonal() * As * sc.asDiagonal();
+    Dr = Dr.cwiseProduct(sr);
+    Dc = Dc.cwiseProduct(sc);
+  }
+}
+
+}  // namespace
+
+ElasticAssembly::Impl::PoseLayout ElasticAssembly::Impl::layout_of(const PoseMembers& members) const {
+  PoseLayout at;
+  at.M = int(interfaces.size());
+  at.B = moving_count;
+  at.nc = int(members.rows.size());
+  at.ou = 0;
+  at.ol = 6 * at.M;
+  at.oa = 12 * at.M;
+  at.om = 12 * at.M + 6 * at.B;
+  at.n = at.om + at.nc;
+  return at;
+}
+
+ElasticAssembly::Impl::PoseScales ElasticAssembly::Impl::scales_of(
+    const PoseMembers& members, const std::vector<Vector6d>& resultant_world) const {
   const double Lr = length_scale;
-
-  // Springs S (chains, compliant drives) and constraint rows C (6M columns).
-  const PoseMembers members = members_of(frame, pose);
-  const Eigen::MatrixXd& S = members.S;
-  const auto& rows = members.rows;
-  const auto& row_rotation = members.row_rotation;
-  const auto& row_in_plane = members.row_in_plane;
-  const auto& row_owner = members.row_owner;
-  const auto& spring_g = members.spring_g;
-  const auto& spring_k = members.spring_k;
-  const auto& spring_name = members.spring_name;
-  const auto& chain_pose = members.chain_pose;
   double max_compliance = members.max_compliance;
-  const int nc = int(rows.size());
-  const int ou = 0, ol = 6 * M, oa = 12 * M, om = 12 * M + 6 * B, n = om + nc;
-
-  // Scales: the largest translational flexibility (parts, chains, drives)
-  // and the largest load resultant.
   for (const auto& part : parts)
     for (Eigen::Index k = 0; k < part->F.rows(); ++k)
       if (k % 6 < 3) max_compliance = std::max(max_compliance, part->F(k, k));
@@ -790,10 +876,23 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     }
   if (!(P > 0)) P = 1.0;
   if (!(max_compliance > 0)) max_compliance = Lr / P;
-  const double U = max_compliance * P;
+  PoseScales scales;
+  scales.P = P;
+  scales.U = max_compliance * P;
+  return scales;
+}
 
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+ElasticAssembly::Impl::PoseSystem ElasticAssembly::Impl::assemble_pose_system(
+    const Pose& pose, const PoseMembers& members, const PoseLayout& at,
+    const std::vector<Eigen::VectorXd>& interface_load_displacement,
+    const std::vector<Vector6d>& resultant_world) const {
+  const int M = at.M, nc = at.nc, n = at.n;
+  const int ou = at.ou, ol = at.ol, oa = at.oa, om = at.om;
+  PoseSystem system;
+  system.A = Eigen::MatrixXd::Zero(n, n);
+  system.rhs = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd& A = system.A;
+  Eigen::VectorXd& rhs = system.rhs;
   for (int k = 0; k < M; ++k) {
     const Interface& iface = interfaces[size_t(k)];
     const int mb = moving[size_t(iface.body)];
@@ -815,16 +914,25 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     // (c) sum_k R_k^T lambda_k = -r_b
     A.block<6, 6>(oa + 6 * mb, ol + 6 * k) = transfer(pose.arm[size_t(k)]).transpose();
   }
-  A.block(ol, ou, 6 * M, 6 * M) = S;
+  A.block(ol, ou, 6 * M, 6 * M) = members.S;
   for (int r = 0; r < nc; ++r) {
-    A.block(ol, om + r, 6 * M, 1) = -rows[size_t(r)].transpose();
-    A.block(om + r, ou, 1, 6 * M) = rows[size_t(r)];  // (d) C u = 0
+    A.block(ol, om + r, 6 * M, 1) = -members.rows[size_t(r)].transpose();
+    A.block(om + r, ou, 1, 6 * M) = members.rows[size_t(r)];  // (d) C u = 0
   }
   for (size_t b = 0; b < model.bodies.size(); ++b)
     if (!ground(int(b))) rhs.segment<6>(oa + 6 * moving[b]) = -resultant_world[size_t(moving[b])];
+  return system;
+}
 
-  // Scaling: physical units (U displacement, P force, Lr length), then Ruiz
-  // equilibration; full-pivoting LU with a rank decision.
+ElasticAssembly::Impl::PoseUnknowns ElasticAssembly::Impl::solve_equilibrated(const mech::Frame& frame,
+                                                                              const Pose& pose,
+                                                                              const PoseMembers& members,
+                                                                              const PoseLayout& at,
+                                                                              const PoseScales& scales,
+                                                                              const PoseSystem& system) const {
+  const int M = at.M, B = at.B, nc = at.nc, n = at.n;
+  const int ou = at.ou, ol = at.ol, oa = at.oa, om = at.om;
+  const double Lr = length_scale, P = scales.P, U = scales.U;
   Eigen::VectorXd var(n), eq(n);
   for (int k = 0; k < 6 * M; ++k) {
     const bool rot = k % 6 >= 3;
@@ -839,45 +947,30 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     eq(oa + k) = rot ? P * Lr : P;
   }
   for (int r = 0; r < nc; ++r) {
-    var(om + r) = row_rotation[size_t(r)] ? P * Lr : P;
-    eq(om + r) = row_rotation[size_t(r)] ? U / Lr : U;
+    var(om + r) = members.row_rotation[size_t(r)] ? P * Lr : P;
+    eq(om + r) = members.row_rotation[size_t(r)] ? U / Lr : U;
   }
-  Eigen::MatrixXd As = eq.cwiseInverse().asDiagonal() * A * var.asDiagonal();
-  Eigen::VectorXd Dr = eq.cwiseInverse(), Dc = var;
-  for (int it = 0; it < 30; ++it) {
-    const Eigen::VectorXd rmax = As.cwiseAbs().rowwise().maxCoeff(),
-                          cmax = As.cwiseAbs().colwise().maxCoeff().transpose();
-    double worst = 0.0;
-    Eigen::VectorXd sr(n), sc(n);
-    for (int i = 0; i < n; ++i) {
-      sr(i) = rmax(i) > 0 ? 1.0 / std::sqrt(rmax(i)) : 1.0;
-      sc(i) = cmax(i) > 0 ? 1.0 / std::sqrt(cmax(i)) : 1.0;
-      worst = std::max({worst, std::abs(1.0 - rmax(i)), std::abs(1.0 - cmax(i))});
-    }
-    if (worst < 1e-3) break;
-    As = sr.asDiagonal() * As * sc.asDiagonal();
-    Dr = Dr.cwiseProduct(sr);
-    Dc = Dc.cwiseProduct(sc);
-  }
-  const Eigen::VectorXd bs = Dr.cwiseProduct(rhs);
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(As);
-  lu.setThreshold(options.rank_tolerance);
-  const int rank = int(lu.rank());
-  if (rank < n) explain_rank_deficiency(frame, pose, lu.kernel(), Dc, rank, n, row_owner);
-  const Eigen::VectorXd y = lu.solve(bs);
-  const double residual = bs.norm() > 0 ? (As * y - bs).norm() / bs.norm() : (As * y).norm();
-  const Eigen::VectorXd x = Dc.cwiseProduct(y);
-  stats.system_seconds += clock.seconds();
-  clock.restart();
+  PoseUnknowns solved;
+  solved.at = at;
+  Eigen::MatrixXd As = eq.cwiseInverse().asDiagonal() * system.A * var.asDiagonal();
+  solved.Dr = eq.cwiseInverse();
+  solved.Dc = var;
+  ruiz_equilibrate(As, solved.Dr, solved.Dc);
+  const Eigen::VectorXd bs = solved.Dr.cwiseProduct(system.rhs);
+  solved.lu.compute(As);
+  solved.lu.setThreshold(options.rank_tolerance);
+  solved.rank = int(solved.lu.rank());
+  if (solved.rank < n)
+    explain_rank_deficiency(frame, pose, solved.lu.kernel(), solved.Dc, solved.rank, n, members.row_owner);
+  const Eigen::VectorXd y = solved.lu.solve(bs);
+  solved.residual = bs.norm() > 0 ? (As * y - bs).norm() / bs.norm() : (As * y).norm();
+  solved.x = solved.Dc.cwiseProduct(y);
+  return solved;
+}
 
-  PoseSolution out;
-  out.t = frame.t;
-  out.unknowns = n;
-  out.rank = rank;
-  out.relative_residual = residual;
-  auto u_of = [&](int k) -> Vector6d { return k >= 0 ? Vector6d(x.segment<6>(ou + 6 * k)) : Vector6d::Zero(); };
-  auto lambda_of = [&](int k) -> Vector6d { return k >= 0 ? Vector6d(x.segment<6>(ol + 6 * k)) : Vector6d::Zero(); };
-
+void ElasticAssembly::Impl::add_body_motions(PoseSolution& out, const PoseUnknowns& solved) const {
+  const int oa = solved.at.oa;
+  const Eigen::VectorXd& x = solved.x;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     if (ground(int(b))) continue;
     BodyMotion bm;
@@ -887,6 +980,11 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     bm.rotation_rad = x.segment<3>(oa + 6 * moving[b] + 3);
     out.bodies.push_back(bm);
   }
+}
+
+void ElasticAssembly::Impl::add_joint_loads(PoseSolution& out, const mech::Frame& frame, const Pose& pose,
+                                            const PoseMembers& members, const PoseUnknowns& solved,
+                                            double P) const {
   for (size_t j = 0; j < joints.size(); ++j) {
     const JointData& jd = joints[j];
     const mech::Joint& joint = model.joints[size_t(jd.joint)];
@@ -896,13 +994,13 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     jl.body_i = joint.body_i;
     jl.body_j = joint.body_j;
     if (jd.tie == mech::AssemblyTie::ChainSpring) {
-      const ChainPose& cp = chain_pose[j];
+      const ChainPose& cp = members.chain_pose[j];
       ChainResult cr;
       cr.chain = joint.name;
       cr.axial_stiffness_n = jd.ea;
       cr.free_length_m = cp.b;
       cr.stiffness_n_per_m = cp.k;
-      cr.elongation_m = cp.g * u_of(jd.if_j);
+      cr.elongation_m = cp.g * solved.u_of(jd.if_j);
       cr.tension_n = cp.k * cr.elongation_m;
       cr.tangent_point_m = cp.T;
       cr.direction = cp.n;
@@ -912,7 +1010,7 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
             "pose, and a tension-only member cannot hold it",
             frame.t, joint.name, cr.tension_n);
       out.chains.push_back(cr);
-      const Vector6d lj = lambda_of(jd.if_j);
+      const Vector6d lj = solved.lambda_of(jd.if_j);
       jl.point_j_m = pose.P[size_t(jd.if_j)];
       jl.force_on_j_n = lj.head<3>();
       jl.moment_on_j_nm = lj.tail<3>();
@@ -921,79 +1019,95 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
       out.joints.push_back(jl);
       continue;
     }
-    const Vector6d li = lambda_of(jd.if_i), lj = lambda_of(jd.if_j);
-    if (jd.if_i >= 0) {
-      jl.point_i_m = pose.P[size_t(jd.if_i)];
-      jl.force_on_i_n = li.head<3>();
-      jl.moment_on_i_nm = li.tail<3>();
-    }
-    if (jd.if_j >= 0) {
-      jl.point_j_m = pose.P[size_t(jd.if_j)];
-      jl.force_on_j_n = lj.head<3>();
-      jl.moment_on_j_nm = lj.tail<3>();
-    }
-    if (jd.if_i < 0) {  // the ground's side: the reaction of the other
-      jl.point_i_m = jl.point_j_m;
-      jl.force_on_i_n = -jl.force_on_j_n;
-      jl.moment_on_i_nm = -jl.moment_on_j_nm;
-    }
-    if (jd.if_j < 0) {
-      jl.point_j_m = jl.point_i_m;
-      jl.force_on_j_n = -jl.force_on_i_n;
-      jl.moment_on_j_nm = -jl.moment_on_i_nm;
-    }
-    out.joints.push_back(jl);
+    out.joints.push_back(held_joint_load(jl, jd, pose, solved));
   }
+}
+
+JointLoad ElasticAssembly::Impl::held_joint_load(JointLoad jl, const JointData& jd, const Pose& pose,
+                                                 const PoseUnknowns& solved) const {
+  const Vector6d li = solved.lambda_of(jd.if_i), lj = solved.lambda_of(jd.if_j);
+  if (jd.if_i >= 0) {
+    jl.point_i_m = pose.P[size_t(jd.if_i)];
+    jl.force_on_i_n = li.head<3>();
+    jl.moment_on_i_nm = li.tail<3>();
+  }
+  if (jd.if_j >= 0) {
+    jl.point_j_m = pose.P[size_t(jd.if_j)];
+    jl.force_on_j_n = lj.head<3>();
+    jl.moment_on_j_nm = lj.tail<3>();
+  }
+  if (jd.if_i < 0) {  // the ground's side: the reaction of the other
+    jl.point_i_m = jl.point_j_m;
+    jl.force_on_i_n = -jl.force_on_j_n;
+    jl.moment_on_i_nm = -jl.moment_on_j_nm;
+  }
+  if (jd.if_j < 0) {
+    jl.point_j_m = jl.point_i_m;
+    jl.force_on_j_n = -jl.force_on_i_n;
+    jl.moment_on_j_nm = -jl.moment_on_i_nm;
+  }
+  return jl;
+}
+
+void ElasticAssembly::Impl::add_drive_results(PoseSolution& out, const PoseUnknowns& solved) const {
   for (const DriveData& dd : drives) {
     DriveResult dr;
     dr.drive = model.motion_drives[size_t(dd.drive)].name;
     dr.rigid = std::isinf(dd.k);
     dr.stiffness_nm_per_rad = dd.k;
-    dr.twist_rad = u_of(dd.if_j)(5) - u_of(dd.if_i)(5);
-    dr.moment_on_j_nm = dd.if_j >= 0 ? lambda_of(dd.if_j)(5) : -lambda_of(dd.if_i)(5);
+    dr.twist_rad = solved.u_of(dd.if_j)(5) - solved.u_of(dd.if_i)(5);
+    dr.moment_on_j_nm = dd.if_j >= 0 ? solved.lambda_of(dd.if_j)(5) : -solved.lambda_of(dd.if_i)(5);
     out.drives.push_back(dr);
   }
-  out.indeterminacy = indeterminacy_of(pose, rows, row_in_plane, spring_g);
+}
 
-  // Unit-load method: the same (factorized) system with a unit force at the
-  // point alone gives the virtual loads of every element (Impl::Interface
-  // loads lambda_v, spring forces k g u_v); their work on the real solution
-  // is each element's contribution.
-  auto deformation_of = [&](int k) -> Vector6d {  // u_k - R_k alpha = F lambda + d (world)
-    const int mb = moving[size_t(interfaces[size_t(k)].body)];
-    return u_of(k) - transfer(pose.arm[size_t(k)]) * x.segment<6>(oa + 6 * mb);
-  };
+void ElasticAssembly::Impl::add_point_results(PoseSolution& out, const Pose& pose, const PoseMembers& members,
+                                              const PoseUnknowns& solved) const {
   for (size_t p = 0; p < points.size(); ++p) {
     PointResult pr;
     pr.name = options.points[p].name;
     pr.body = options.points[p].body;
     const int k = points[p].iface;
     pr.position_m = pose.P[size_t(k)];
-    const Vector6d u = u_of(k);
+    const Vector6d u = solved.u_of(k);
     pr.displacement_m = u.head<3>();
     pr.rotation_rad = u.tail<3>();
-    if (options.unit_load_split) {
-      for (const auto& part : parts) pr.contributions.push_back({"part." + part->body, Vector3d::Zero()});
-      for (const auto& name : spring_name) pr.contributions.push_back({name, Vector3d::Zero()});
-      for (int c = 0; c < 3; ++c) {
-        Eigen::VectorXd unit = Eigen::VectorXd::Zero(n);
-        unit(ol + 6 * k + c) = 1.0;  // (b): lambda_k = e_c, the point's load on its body
-        const Eigen::VectorXd xv = Dc.cwiseProduct(lu.solve(Dr.cwiseProduct(unit)));
-        pr.compliance_m_per_n.col(c) = xv.segment<3>(ou + 6 * k);
-        for (size_t q = 0; q < parts.size(); ++q)
-          for (const int l : parts[q]->interfaces)
-            pr.contributions[q].displacement_m(c) += xv.segment<6>(ol + 6 * l).dot(deformation_of(l));
-        for (size_t sm = 0; sm < spring_g.size(); ++sm) {
-          const double virtual_force = spring_k[sm] * spring_g[sm].dot(xv.segment(ou, 6 * M));
-          pr.contributions[parts.size() + sm].displacement_m(c) =
-              virtual_force * spring_g[sm].dot(x.segment(ou, 6 * M));
-        }
-      }
-    }
+    if (options.unit_load_split) split_by_unit_loads(pr, k, pose, members, solved);
     out.points.push_back(pr);
   }
+}
 
-  // What the fields need (add_fields): u = Z_G lambda + Z_f + rigid(alpha).
+void ElasticAssembly::Impl::split_by_unit_loads(PointResult& pr, int k, const Pose& pose, const PoseMembers& members,
+                                                const PoseUnknowns& solved) const {
+  const int M = solved.at.M, n = solved.at.n, ou = solved.at.ou, ol = solved.at.ol, oa = solved.at.oa;
+  const Eigen::VectorXd& x = solved.x;
+  const auto& spring_g = members.spring_g;
+  const auto& spring_k = members.spring_k;
+  auto deformation_of = [&](int l) -> Vector6d {  // u_l - R_l alpha = F lambda + d (world)
+    const int mb = moving[size_t(interfaces[size_t(l)].body)];
+    return solved.u_of(l) - transfer(pose.arm[size_t(l)]) * x.segment<6>(oa + 6 * mb);
+  };
+  for (const auto& part : parts) pr.contributions.push_back({"part." + part->body, Vector3d::Zero()});
+  for (const auto& name : members.spring_name) pr.contributions.push_back({name, Vector3d::Zero()});
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(n);
+    unit(ol + 6 * k + c) = 1.0;  // (b): lambda_k = e_c, the point's load on its body
+    const Eigen::VectorXd xv = solved.Dc.cwiseProduct(solved.lu.solve(solved.Dr.cwiseProduct(unit)));
+    pr.compliance_m_per_n.col(c) = xv.segment<3>(ou + 6 * k);
+    for (size_t q = 0; q < parts.size(); ++q)
+      for (const int l : parts[q]->interfaces)
+        pr.contributions[q].displacement_m(c) += xv.segment<6>(ol + 6 * l).dot(deformation_of(l));
+    for (size_t sm = 0; sm < spring_g.size(); ++sm) {
+      const double virtual_force = spring_k[sm] * spring_g[sm].dot(xv.segment(ou, 6 * M));
+      pr.contributions[parts.size() + sm].displacement_m(c) = virtual_force * spring_g[sm].dot(x.segment(ou, 6 * M));
+    }
+  }
+}
+
+void ElasticAssembly::Impl::collect_field_inputs(const Pose& pose, const PoseUnknowns& solved,
+                                                 FieldInputs& field_inputs) const {
+  const int oa = solved.at.oa;
+  const Eigen::VectorXd& x = solved.x;
   field_inputs.lambda_body.resize(parts.size());
   field_inputs.translation.resize(parts.size());
   field_inputs.rotation.resize(parts.size());
@@ -1004,11 +1118,39 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
     const Matrix6d Q = rotate6(R);
     Eigen::VectorXd lambda_body(6 * Eigen::Index(part.interfaces.size()));
     for (size_t l = 0; l < part.interfaces.size(); ++l)
-      lambda_body.segment<6>(6 * Eigen::Index(l)) = Q.transpose() * lambda_of(part.interfaces[l]);
+      lambda_body.segment<6>(6 * Eigen::Index(l)) = Q.transpose() * solved.lambda_of(part.interfaces[l]);
     field_inputs.lambda_body[p] = std::move(lambda_body);
     field_inputs.translation[p] = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)]);
     field_inputs.rotation[p] = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)] + 3);
   }
+}
+
+PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
+                                               const std::vector<Eigen::VectorXd>& interface_load_displacement,
+                                               const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
+  Stopwatch clock;
+  const Pose pose = pose_of(frame);
+  // Springs S (chains, compliant drives) and constraint rows C (6M columns).
+  const PoseMembers members = members_of(frame, pose);
+  const PoseLayout at = layout_of(members);
+  const PoseScales scales = scales_of(members, resultant_world);
+  const PoseUnknowns solved = solve_equilibrated(
+      frame, pose, members, at, scales,
+      assemble_pose_system(pose, members, at, interface_load_displacement, resultant_world));
+  stats.system_seconds += clock.seconds();
+  clock.restart();
+
+  PoseSolution out;
+  out.t = frame.t;
+  out.unknowns = at.n;
+  out.rank = solved.rank;
+  out.relative_residual = solved.residual;
+  add_body_motions(out, solved);
+  add_joint_loads(out, frame, pose, members, solved, scales.P);
+  add_drive_results(out, solved);
+  out.indeterminacy = indeterminacy_of(pose, members.rows, members.row_in_plane, members.spring_g);
+  add_point_results(out, pose, members, solved);
+  collect_field_inputs(pose, solved, field_inputs);
   stats.recovery_seconds += clock.seconds();
   return out;
 }
