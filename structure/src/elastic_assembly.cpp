@@ -152,6 +152,30 @@ struct ElasticAssembly::Impl {
 
   Impl(const std::vector<Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l,
        const std::vector<fem::LinearStaticAnalysis*>& factorized, bool set_up_now);
+  // Per body: no part yet, its index among the moving bodies (-1 ground), no
+  // interfaces.
+  void index_bodies();
+  // Adds the elastic part of a moving body: its 3-2-1-supported model, the
+  // factor lent for it (or none), its loads without the joints and the motion
+  // drives (held by the structure).
+  void add_part(const Part& part, fem::LinearStaticAnalysis* factor);
+  // The face set that body's part names for joint (empty on a rigid body).
+  std::string face_set_of_joint(int body, const std::string& joint) const;
+  // The options' chains and drives must be the mechanism's, with valid
+  // stiffnesses.
+  void check_member_options() const;
+  // Adds model joint j with its interfaces (a chain: its roller's only).
+  void add_joint(size_t j);
+  // A chain joint's spring data (EA, roller, hinge on the ground) and the
+  // interface of its roller.
+  void tie_chain(JointData& jd, const mech::Joint& joint, const std::string& who);
+  // Adds motion drive d with the interfaces of its two sides.
+  void add_drive(size_t d);
+  // The interface of a motion drive on body (-1 on the ground), at the
+  // centroid of the face set its part names.
+  int add_drive_side(int body, const std::string& drive);
+  // Adds a tracked point with its interface.
+  void add_point(const AssemblyPoint& tp);
 
   int body_index(const std::string& name, const std::string& who) const {
     for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -426,66 +450,82 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   Stopwatch clock;
   system = std::make_unique<mech::MultibodySystem>(model);
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
+  index_bodies();
+  for (const Part& part : given) add_part(part, factorized.empty() ? nullptr : factorized[parts.size()]);
+  check_member_options();
+  for (size_t j = 0; j < model.joints.size(); ++j) add_joint(j);
+  for (size_t d = 0; d < model.motion_drives.size(); ++d) add_drive(d);
+  for (const AssemblyPoint& tp : options.points) add_point(tp);
+
+  stats.elastic_parts = int(parts.size());
+  stats.rigid_bodies = moving_count - int(parts.size());
+  stats.interfaces = int(interfaces.size());
+  stats.setup_seconds = clock.seconds();
+  if (set_up_now)
+    for (auto& part : parts) set_up_part(*part);
+}
+
+void ElasticAssembly::Impl::index_bodies() {
   const size_t nb = model.bodies.size();
   part_of_body.assign(nb, -1);
   moving.assign(nb, -1);
   interfaces_of_body.assign(nb, {});
   for (size_t b = 0; b < nb; ++b)
     if (!model.bodies[b].fixed) moving[b] = moving_count++;
+}
 
-  // Parts: the 3-2-1-supported stiffness, factorized once; the loads without
-  // the joints (and the motion drives, held by the structure).
-  for (const Part& part : given) {
-    auto data = std::make_unique<PartData>();
-    data->body = part.body();
-    data->label = part.label.empty() ? fmt::format("part '{}'", part.body()) : part.label;
-    data->body_index = body_index(part.body(), data->label);
-    require(!model.bodies[size_t(data->body_index)].fixed,
-            "{}: body '{}' is the ground, which is rigid and fixed here: give the part to a moving body", data->label,
-            data->body);
-    require(part_of_body[size_t(data->body_index)] < 0, "{}: body '{}' has two parts", data->label, data->body);
-    part_of_body[size_t(data->body_index)] = int(parts.size());
-    data->supported = part.model;
-    data->attachments = part.attachments;
-    data->attachments.body = part.body();
-    std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
-    for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
-    data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
-    if (!factorized.empty() && factorized[parts.size()]) {
-      require_factor_of(data->supported, *factorized[parts.size()], data->label);
-      data->given_analysis = factorized[parts.size()];
-    }
-    for (const auto& a : data->attachments.joints) {
-      const auto it = std::find_if(model.joints.begin(), model.joints.end(),
-                                   [&](const mech::Joint& j) { return j.name == a.joint; });
-      require(it != model.joints.end(), "{}: the mechanism has no joint '{}'", data->label, a.joint);
-      require(it->body_i == data->body || it->body_j == data->body,
-              "{}: joint '{}' does not act on body '{}' (it joins '{}' and '{}')", data->label, a.joint, data->body,
-              it->body_i, it->body_j);
-    }
-    loads::LinkDefinition own = data->attachments;
-    own.model = &data->supported;
-    own.joints.clear();
-    std::erase_if(own.drives, [&](const loads::DriveAttachment& d) {
-      return std::any_of(model.motion_drives.begin(), model.motion_drives.end(),
-                         [&](const mech::MotionDrive& md) { return md.name == d.drive; });
-    });
-    // No equilibrium check in loads_at: without the joint reactions the loads
-    // are not self-equilibrated; the resultant is checked against the
-    // multibody body instead (solve).
-    data->loads = std::make_unique<loads::LinkLoads>(own, model, std::numeric_limits<double>::infinity());
-    parts.push_back(std::move(data));
+void ElasticAssembly::Impl::add_part(const Part& part, fem::LinearStaticAnalysis* factor) {
+  auto data = std::make_unique<PartData>();
+  data->body = part.body();
+  data->label = part.label.empty() ? fmt::format("part '{}'", part.body()) : part.label;
+  data->body_index = body_index(part.body(), data->label);
+  require(!model.bodies[size_t(data->body_index)].fixed,
+          "{}: body '{}' is the ground, which is rigid and fixed here: give the part to a moving body", data->label,
+          data->body);
+  require(part_of_body[size_t(data->body_index)] < 0, "{}: body '{}' has two parts", data->label, data->body);
+  part_of_body[size_t(data->body_index)] = int(parts.size());
+  data->supported = part.model;
+  data->attachments = part.attachments;
+  data->attachments.body = part.body();
+  std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
+  for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
+  data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
+  if (factor) {
+    require_factor_of(data->supported, *factor, data->label);
+    data->given_analysis = factor;
   }
+  for (const auto& a : data->attachments.joints) {
+    const auto it = std::find_if(model.joints.begin(), model.joints.end(),
+                                 [&](const mech::Joint& j) { return j.name == a.joint; });
+    require(it != model.joints.end(), "{}: the mechanism has no joint '{}'", data->label, a.joint);
+    require(it->body_i == data->body || it->body_j == data->body,
+            "{}: joint '{}' does not act on body '{}' (it joins '{}' and '{}')", data->label, a.joint, data->body,
+            it->body_i, it->body_j);
+  }
+  loads::LinkDefinition own = data->attachments;
+  own.model = &data->supported;
+  own.joints.clear();
+  std::erase_if(own.drives, [&](const loads::DriveAttachment& d) {
+    return std::any_of(model.motion_drives.begin(), model.motion_drives.end(),
+                       [&](const mech::MotionDrive& md) { return md.name == d.drive; });
+  });
+  // No equilibrium check in loads_at: without the joint reactions the loads
+  // are not self-equilibrated; the resultant is checked against the
+  // multibody body instead (solve).
+  data->loads = std::make_unique<loads::LinkLoads>(own, model, std::numeric_limits<double>::infinity());
+  parts.push_back(std::move(data));
+}
 
-  auto face_set_of_joint = [&](int body, const std::string& joint) -> std::string {
-    const int p = part_of_body[size_t(body)];
-    if (p < 0) return {};
-    for (const auto& a : parts[size_t(p)]->attachments.joints)
-      if (a.joint == joint) return a.face_set;
-    fail("{}: joint '{}' acts on body '{}' but the part names no face set for it (LinkDefinition::joints)",
-         parts[size_t(p)]->label, joint, body_name(body));
-  };
+std::string ElasticAssembly::Impl::face_set_of_joint(int body, const std::string& joint) const {
+  const int p = part_of_body[size_t(body)];
+  if (p < 0) return {};
+  for (const auto& a : parts[size_t(p)]->attachments.joints)
+    if (a.joint == joint) return a.face_set;
+  fail("{}: joint '{}' acts on body '{}' but the part names no face set for it (LinkDefinition::joints)",
+       parts[size_t(p)]->label, joint, body_name(body));
+}
 
+void ElasticAssembly::Impl::check_member_options() const {
   for (const auto& c : options.chains) {
     const auto it = std::find_if(model.joints.begin(), model.joints.end(), [&](const mech::Joint& j) {
       return j.name == c.chain && mech::joint_facts(j.type).assembly_tie == mech::AssemblyTie::ChainSpring;
@@ -502,99 +542,96 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
             "elastic assembly: drive '{}': torsional stiffness {} N m/rad must be >= 0 (kRigid: held rigidly)", d.drive,
             d.torsional_stiffness_nm_per_rad);
   }
+}
 
-  for (size_t j = 0; j < model.joints.size(); ++j) {
-    const mech::Joint& joint = model.joints[j];
-    JointData jd;
-    jd.joint = int(j);
-    jd.type = joint.type;
-    const std::string who = fmt::format("joint '{}'", joint.name);
-    jd.body_i = body_index(joint.body_i, who);
-    jd.body_j = body_index(joint.body_j, who);
-    jd.tie = mech::joint_facts(joint.type).assembly_tie;
-    jd.held = mech::joint_facts(joint.type).assembly_held;
-    require(jd.tie != mech::AssemblyTie::None,
-            "elastic assembly: joint '{}' is {}, which the elastic assembly does not model", joint.name,
-            mech::joint_facts(joint.type).name);
-    if (jd.tie == mech::AssemblyTie::ChainSpring) {
-      require(
-          ground(jd.body_i),
+void ElasticAssembly::Impl::add_joint(size_t j) {
+  const mech::Joint& joint = model.joints[j];
+  JointData jd;
+  jd.joint = int(j);
+  jd.type = joint.type;
+  const std::string who = fmt::format("joint '{}'", joint.name);
+  jd.body_i = body_index(joint.body_i, who);
+  jd.body_j = body_index(joint.body_j, who);
+  jd.tie = mech::joint_facts(joint.type).assembly_tie;
+  jd.held = mech::joint_facts(joint.type).assembly_held;
+  require(jd.tie != mech::AssemblyTie::None,
+          "elastic assembly: joint '{}' is {}, which the elastic assembly does not model", joint.name,
+          mech::joint_facts(joint.type).name);
+  if (jd.tie == mech::AssemblyTie::ChainSpring) {
+    tie_chain(jd, joint, who);
+  } else {
+    if (!ground(jd.body_i))
+      jd.if_i = add_interface(jd.body_i, Kind::Joint, joint.name, face_set_of_joint(jd.body_i, joint.name),
+                              named_point(jd.body_i, joint.point_i, who), false);
+    if (!ground(jd.body_j))
+      jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
+                              named_point(jd.body_j, joint.point_j, who), false);
+  }
+  joints.push_back(jd);
+}
+
+void ElasticAssembly::Impl::tie_chain(JointData& jd, const mech::Joint& joint, const std::string& who) {
+  require(ground(jd.body_i),
           "elastic assembly: chain '{}' is hinged to body '{}'; the elastic assembly needs the hinge (body_i) on the "
           "ground",
           joint.name, joint.body_i);
-      require(!ground(jd.body_j), "elastic assembly: chain '{}' wraps a roller on the ground", joint.name);
-      const auto it = std::find_if(options.chains.begin(), options.chains.end(),
-                                   [&](const ChainMember& c) { return c.chain == joint.name; });
-      require(it != options.chains.end(),
-              "elastic assembly: chain '{}' has no axial stiffness (AssemblyOptions::chains: EA in N)", joint.name);
-      require(it->axial_stiffness_n > 0 && std::isfinite(it->axial_stiffness_n),
-              "elastic assembly: chain '{}': axial stiffness EA = {} N must be positive and finite", joint.name,
-              it->axial_stiffness_n);
-      jd.ea = it->axial_stiffness_n;
-      jd.radius = joint.radius_m;
-      jd.sigma = joint.wrap_ccw ? 1.0 : -1.0;
-      jd.hinge = named_point(jd.body_i, joint.point_i, who);
-      jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
-                              named_point(jd.body_j, joint.point_j, who), false);
-    } else {
-      if (!ground(jd.body_i))
-        jd.if_i = add_interface(jd.body_i, Kind::Joint, joint.name, face_set_of_joint(jd.body_i, joint.name),
-                                named_point(jd.body_i, joint.point_i, who), false);
-      if (!ground(jd.body_j))
-        jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
-                                named_point(jd.body_j, joint.point_j, who), false);
-    }
-    joints.push_back(jd);
-  }
+  require(!ground(jd.body_j), "elastic assembly: chain '{}' wraps a roller on the ground", joint.name);
+  const auto it = std::find_if(options.chains.begin(), options.chains.end(),
+                               [&](const ChainMember& c) { return c.chain == joint.name; });
+  require(it != options.chains.end(),
+          "elastic assembly: chain '{}' has no axial stiffness (AssemblyOptions::chains: EA in N)", joint.name);
+  require(it->axial_stiffness_n > 0 && std::isfinite(it->axial_stiffness_n),
+          "elastic assembly: chain '{}': axial stiffness EA = {} N must be positive and finite", joint.name,
+          it->axial_stiffness_n);
+  jd.ea = it->axial_stiffness_n;
+  jd.radius = joint.radius_m;
+  jd.sigma = joint.wrap_ccw ? 1.0 : -1.0;
+  jd.hinge = named_point(jd.body_i, joint.point_i, who);
+  jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
+                          named_point(jd.body_j, joint.point_j, who), false);
+}
 
-  for (size_t d = 0; d < model.motion_drives.size(); ++d) {
-    const mech::MotionDrive& drive = model.motion_drives[d];
-    require(drive.coordinate.type == mech::CoordinateType::Angle,
-            "elastic assembly: motion drive '{}' drives a displacement; only angle drives are modelled", drive.name);
-    DriveData dd;
-    dd.drive = int(d);
-    const std::string who = fmt::format("drive '{}'", drive.name);
-    dd.body_i = body_index(drive.coordinate.body_i, who);
-    dd.body_j = body_index(drive.coordinate.body_j, who);
-    for (const auto& h : options.drives)
-      if (h.drive == drive.name) dd.k = h.torsional_stiffness_nm_per_rad;
-    auto side = [&](int body) {
-      if (ground(body)) return -1;
-      std::string face_set;
-      const int p = part_of_body[size_t(body)];
-      if (p >= 0) {
-        for (const auto& a : parts[size_t(p)]->attachments.drives)
-          if (a.drive == drive.name) face_set = a.face_set;
-        require(!face_set.empty(),
-                "{}: motion drive '{}' acts on body '{}' but the part names no face set for it "
-                "(LinkDefinition::drives)",
-                parts[size_t(p)]->label, drive.name, body_name(body));
-      }
-      return add_interface(body, Kind::Drive, drive.name, face_set, Vector2d::Zero(), true);
-    };
-    dd.if_i = side(dd.body_i);
-    dd.if_j = side(dd.body_j);
-    drives.push_back(dd);
-  }
+void ElasticAssembly::Impl::add_drive(size_t d) {
+  const mech::MotionDrive& drive = model.motion_drives[d];
+  require(drive.coordinate.type == mech::CoordinateType::Angle,
+          "elastic assembly: motion drive '{}' drives a displacement; only angle drives are modelled", drive.name);
+  DriveData dd;
+  dd.drive = int(d);
+  const std::string who = fmt::format("drive '{}'", drive.name);
+  dd.body_i = body_index(drive.coordinate.body_i, who);
+  dd.body_j = body_index(drive.coordinate.body_j, who);
+  for (const auto& h : options.drives)
+    if (h.drive == drive.name) dd.k = h.torsional_stiffness_nm_per_rad;
+  dd.if_i = add_drive_side(dd.body_i, drive.name);
+  dd.if_j = add_drive_side(dd.body_j, drive.name);
+  drives.push_back(dd);
+}
 
-  for (const AssemblyPoint& tp : options.points) {
-    PointData pd;
-    const std::string who = fmt::format("tracked point '{}'", tp.name);
-    pd.body = body_index(tp.body, who);
-    require(!ground(pd.body), "elastic assembly: tracked point '{}' is on the ground, which does not move", tp.name);
-    const int p = part_of_body[size_t(pd.body)];
-    require(p < 0 || !tp.face_set.empty(), "elastic assembly: tracked point '{}' on part '{}' needs a face set",
-            tp.name, tp.body);
-    pd.iface = add_interface(pd.body, Kind::Point, tp.name, tp.face_set, named_point(pd.body, tp.point, who), false);
-    points.push_back(pd);
+int ElasticAssembly::Impl::add_drive_side(int body, const std::string& drive) {
+  if (ground(body)) return -1;
+  std::string face_set;
+  const int p = part_of_body[size_t(body)];
+  if (p >= 0) {
+    for (const auto& a : parts[size_t(p)]->attachments.drives)
+      if (a.drive == drive) face_set = a.face_set;
+    require(!face_set.empty(),
+            "{}: motion drive '{}' acts on body '{}' but the part names no face set for it "
+            "(LinkDefinition::drives)",
+            parts[size_t(p)]->label, drive, body_name(body));
   }
+  return add_interface(body, Kind::Drive, drive, face_set, Vector2d::Zero(), true);
+}
 
-  stats.elastic_parts = int(parts.size());
-  stats.rigid_bodies = moving_count - int(parts.size());
-  stats.interfaces = int(interfaces.size());
-  stats.setup_seconds = clock.seconds();
-  if (set_up_now)
-    for (auto& part : parts) set_up_part(*part);
+void ElasticAssembly::Impl::add_point(const AssemblyPoint& tp) {
+  PointData pd;
+  const std::string who = fmt::format("tracked point '{}'", tp.name);
+  pd.body = body_index(tp.body, who);
+  require(!ground(pd.body), "elastic assembly: tracked point '{}' is on the ground, which does not move", tp.name);
+  const int p = part_of_body[size_t(pd.body)];
+  require(p < 0 || !tp.face_set.empty(), "elastic assembly: tracked point '{}' on part '{}' needs a face set",
+          tp.name, tp.body);
+  pd.iface = add_interface(pd.body, Kind::Point, tp.name, tp.face_set, named_point(pd.body, tp.point, who), false);
+  points.push_back(pd);
 }
 
 // The part's factorization (lent by the caller, or made and owned here), its
