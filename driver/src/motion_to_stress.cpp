@@ -150,19 +150,17 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     log.info("elastic assembly: {} parts, {} output times{}", parts.size(), run.motion.frames.size(),
              run.static_pose ? " + the static study" : "");
     run.assembly = in_stage(c, "the elastic assembly cannot be solved or written", [&] {
-      return analyse_assembly_over_motion(*assembly, parts, run.model, run.motion.frames, run.static_pose,
-                                                     writer, assembly_options, log);
+      return analyse_assembly_with_factors(*assembly, parts, run.model, run.motion.frames, run.static_pose, writer,
+                                           assembly_options, log, *factors);
     });
-    factors->done_all(FactorUser::Assembly);
   }
   if (c.vibration) {
     log.info("vibration: the modes of the elastic assembly at {} output times{}", run.motion.frames.size(),
              run.static_pose ? " + the static pose" : "");
     run.vibration = in_stage(c, "the vibration cannot be analysed or written", [&] {
-      return analyse_vibration_over_motion(*assembly, parts, run.model, run.motion.frames, run.static_pose,
-                                                      writer, assembly_options, *c.vibration, *run.assembly, log);
+      return analyse_vibration_with_factors(*assembly, parts, run.model, run.motion.frames, run.static_pose, writer,
+                                            assembly_options, *c.vibration, *run.assembly, log, *factors);
     });
-    factors->done_all(FactorUser::Vibration);
   }
   writer.commit();
   return run;

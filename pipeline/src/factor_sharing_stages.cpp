@@ -68,4 +68,29 @@ void set_up_assembly_part(structure::ElasticAssembly& assembly, std::size_t k, c
   factors.done(k, FactorUser::AssemblySetUp, assembly.solves_with_factor(parts[k].body()));
 }
 
+AssemblySummary analyse_assembly_with_factors(structure::ElasticAssembly& assembly, const std::vector<Part>& parts,
+                                              const mech::MultibodyModel& model, const std::vector<mech::Frame>& motion,
+                                              const std::optional<mech::Frame>& static_pose,
+                                              post::ResultsWriter& writer, const structure::AssemblyOptions& options,
+                                              const Log& log, PartFactors& factors) {
+  AssemblySummary summary =
+      analyse_assembly_over_motion(assembly, parts, model, motion, static_pose, writer, options, log);
+  factors.done_all(FactorUser::Assembly);
+  return summary;
+}
+
+VibrationSummary analyse_vibration_with_factors(const structure::ElasticAssembly& assembly,
+                                                const std::vector<Part>& parts, const mech::MultibodyModel& model,
+                                                const std::vector<mech::Frame>& motion,
+                                                const std::optional<mech::Frame>& static_pose,
+                                                post::ResultsWriter& writer,
+                                                const structure::AssemblyOptions& assembly_options,
+                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
+                                                const Log& log, PartFactors& factors) {
+  VibrationSummary summary = analyse_vibration_over_motion(assembly, parts, model, motion, static_pose, writer,
+                                                           assembly_options, options, quasi_static, log);
+  factors.done_all(FactorUser::Vibration);
+  return summary;
+}
+
 }  // namespace kinetofem::pipeline

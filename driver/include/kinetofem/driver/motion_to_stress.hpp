@@ -25,12 +25,13 @@
 //        assess_part_fatigue           per part (when asked): rainflow, Miner,
 //                                      life per node over the work cycle
 //     7. write_mechanism_histories     bodies, joints, drives, chains, points
-//     8. analyse_assembly_over_motion  the linkage as one elastic structure
+//     8. analyse_assembly_with_factors the linkage as one elastic structure
 //                                      (when asked): total deformation, the
 //                                      tracked points' deflection and split
-//        analyse_vibration_over_motion the assembly's modes in every pose and
+//        analyse_vibration_with_factors the assembly's modes in every pose and
 //                                      the tracked points' vibration (when
-//                                      asked; needs step 8)
+//                                      asked; needs step 8); each gives its
+//                                      factors back when done
 //     9. commit the results file       atomically (.h5 + .xdmf)
 // A linkage without parts runs steps 1, 4, 5, 7 and 9.
 //

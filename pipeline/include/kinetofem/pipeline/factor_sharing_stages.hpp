@@ -6,8 +6,9 @@
 //   begin_elastic_assembly     the assembly's topology and checks (before the parts' stress)
 //   analyse_part_with_factors  one part's stress over the motion with its lent factor
 //   set_up_assembly_part       that part's interface and load-pattern solves on the same factor
-// then analyse_assembly_over_motion and analyse_vibration_over_motion on the
-// assembly (assembly_over_motion.hpp, vibration_over_motion.hpp).
+//   analyse_assembly_with_factors   the assembly over the motion, then its factors given back
+//   analyse_vibration_with_factors  the vibration over the motion, then its factors given back
+// (the stages themselves: assembly_over_motion.hpp, vibration_over_motion.hpp).
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -17,10 +18,12 @@
 #include "kinetofem/loads/link_stress_history.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"
 #include "kinetofem/pipeline/part_factors.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/pipeline/part_stress_history.hpp"
+#include "kinetofem/pipeline/vibration_over_motion.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 
@@ -58,5 +61,24 @@ PartSummary analyse_part_with_factors(std::size_t k, const std::vector<Part>& pa
 // assembly's poses or the vibration still need it).
 void set_up_assembly_part(structure::ElasticAssembly& assembly, std::size_t k, const std::vector<Part>& parts,
                           PartFactors& factors);
+
+// analyse_assembly_over_motion on the set-up assembly, then every factor
+// given back (FactorUser::Assembly: freed unless the vibration follows).
+AssemblySummary analyse_assembly_with_factors(structure::ElasticAssembly& assembly, const std::vector<Part>& parts,
+                                              const mech::MultibodyModel& model, const std::vector<mech::Frame>& motion,
+                                              const std::optional<mech::Frame>& static_pose,
+                                              post::ResultsWriter& writer, const structure::AssemblyOptions& options,
+                                              const Log& log, PartFactors& factors);
+
+// analyse_vibration_over_motion on the same assembly, whose parts' factors
+// `factors` still holds, then every factor given back (FactorUser::Vibration).
+VibrationSummary analyse_vibration_with_factors(const structure::ElasticAssembly& assembly,
+                                                const std::vector<Part>& parts, const mech::MultibodyModel& model,
+                                                const std::vector<mech::Frame>& motion,
+                                                const std::optional<mech::Frame>& static_pose,
+                                                post::ResultsWriter& writer,
+                                                const structure::AssemblyOptions& assembly_options,
+                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
+                                                const Log& log, PartFactors& factors);
 
 }  // namespace kinetofem::pipeline

@@ -16,6 +16,7 @@
 //     factors.done(k, FactorUser::AssemblySetUp, assembly.solves_with_factor(body));
 //   analyse_assembly_over_motion(...); factors.done_all(FactorUser::Assembly);
 //   analyse_vibration_over_motion(...); factors.done_all(FactorUser::Vibration);
+// (the stages that do this for the driver: factor_sharing_stages.hpp)
 //
 // Side by side or one at a time (factorize_parts, part_factorization.hpp):
 // the factors live together when their predicted size (CHOLMOD's symbolic
