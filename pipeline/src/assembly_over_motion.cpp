@@ -42,6 +42,241 @@ struct BodyEnvelope {
   post::IndexMatrix step_u, step_vm;
 };
 
+// Records the solved poses of a motion into the results file and the
+// summary: the parts' fields and envelopes, the histories of the tracked
+// points, chains and drives (rows: output times), the static study.
+struct AssemblyRecorder {
+  const std::vector<structure::Part>& parts;
+  const AssemblyOptions& options;
+  post::ResultsWriter& writer;
+  AssemblySummary& summary;
+  size_t T = 0;  // output times
+  size_t P = 0;  // tracked points
+
+  // Per part: its assembly body's writer, nodal envelopes and multibody body index.
+  std::vector<post::BodyWriter*> bodies;
+  std::vector<BodyEnvelope> envelopes;
+  std::vector<int> part_body;
+
+  // Histories, filled pose by pose.
+  post::FieldMatrix max_u;
+  std::vector<post::FieldMatrix> point_u, point_mag, point_rot, point_compliance;
+  std::vector<std::vector<post::FieldMatrix>> point_from;
+  std::vector<std::vector<std::string>> point_from_names;
+  std::vector<std::string> chain_names, drive_names;
+  std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
+
+  AssemblyRecorder(const std::vector<structure::Part>& parts_, const mech::MultibodyModel& model,
+                   post::ResultsWriter& writer_, const AssemblyOptions& options_, size_t output_times,
+                   AssemblySummary& summary_)
+      : parts(parts_), options(options_), writer(writer_), summary(summary_), T(output_times),
+        P(options_.points.size()), envelopes(parts_.size()), part_body(parts_.size()), max_u(output_times, 1),
+        point_u(P, post::FieldMatrix(output_times, 3)), point_mag(P, post::FieldMatrix(output_times, 1)),
+        point_rot(P, post::FieldMatrix(output_times, 3)), point_compliance(P, post::FieldMatrix(output_times, 9)),
+        point_from(P), point_from_names(P) {
+    begin_part_bodies(model);
+    for (size_t i = 0; i < P; ++i) {
+      summary.points.push_back({.name = options.points[i].name, .body = options.points[i].body});
+      summary.points.back().min_compliance_m_per_n = std::numeric_limits<double>::infinity();
+    }
+  }
+
+  // Writers and envelopes of every part's assembly body, and its summary line.
+  void begin_part_bodies(const mech::MultibodyModel& model) {
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const fem::Mesh& mesh = parts[p].model.mesh;
+      post::BodyWriter& w = writer.add_body(post::layout::kAssemblyBodyPrefix + parts[p].body(), mesh);
+      w.begin_series({{.name = post::layout::kPosition, .units = "m", .components = 3, .component_names = post::kVectorComponents,
+                       .geometry = true},
+                      {post::layout::kDisplacement, "m", 3, post::kVectorComponents},
+                      {post::layout::kDisplacementMagnitude, "m", 1, {}},
+                      {post::layout::kVonMises, "Pa", 1, {}}});
+      bodies.push_back(&w);
+      const fem::Index N = mesh.node_count();
+      envelopes[p] = {Eigen::VectorXd::Constant(N, -1.0), Eigen::VectorXd::Constant(N, -1.0),
+                      post::IndexMatrix::Zero(N, 1), post::IndexMatrix::Zero(N, 1)};
+      part_body[p] = body_index(model, parts[p].body());
+      summary.parts.push_back({parts[p].body(), 0.0, 0.0});
+    }
+  }
+
+  // Records the pose of output time k (frame: its multibody frame).
+  void record(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
+    max_u(Eigen::Index(k), 0) = pose.max_displacement_m;
+    if (pose.max_displacement_m > summary.max_displacement_m || k == 0) {
+      summary.max_displacement_m = pose.max_displacement_m;
+      summary.max_displacement_time_s = frame.t;
+      summary.max_displacement_body = pose.max_displacement_body;
+    }
+    record_part_fields(pose, k, frame);
+    record_points(pose, k, frame);
+    record_chains_and_drives(pose, k, frame);
+  }
+
+  // The parts' fields at output time k (where field_steps asks for them), their envelopes and largest von Mises.
+  void record_part_fields(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const PartField& field = pose.part(parts[p].body());
+      const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
+      if (options.field_steps.empty() || options.field_steps.at(k))
+        bodies[p]->write_step(frame.t, {{post::layout::kPosition, world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])])},
+                                        {post::layout::kDisplacement, field.displacement_m},
+                                        {post::layout::kDisplacementMagnitude, magnitude},
+                                        {post::layout::kVonMises, field.von_mises_pa}});
+      BodyEnvelope& e = envelopes[p];
+#pragma omp parallel for schedule(static)
+      for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
+        if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
+        if (field.von_mises_pa(i) > e.max_vm(i)) e.max_vm(i) = field.von_mises_pa(i), e.step_vm(i, 0) = fem::Index(k);
+      }
+      summary.parts[p].max_von_mises_pa = std::max(summary.parts[p].max_von_mises_pa, field.von_mises_pa.maxCoeff());
+    }
+  }
+
+  // The tracked points at output time k: displacement (m), rotation (rad),
+  // compliance (m/N) and its split, their largest and in-plane extremes.
+  void record_points(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
+    for (size_t i = 0; i < P; ++i) {
+      const PointResult& pr = pose.points[i];
+      const Eigen::Index r = Eigen::Index(k);
+      point_u[i].row(r) = pr.displacement_m.transpose();
+      point_mag[i](r, 0) = pr.displacement_m.norm();
+      point_rot[i].row(r) = pr.rotation_rad.transpose();
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) point_compliance[i](r, 3 * a + b) = pr.compliance_m_per_n(a, b);
+      if (point_from[i].empty())
+        for (const auto& c : pr.contributions) {
+          point_from[i].push_back(post::FieldMatrix::Zero(Eigen::Index(T), 3));
+          point_from_names[i].push_back(c.name);
+        }
+      for (size_t c = 0; c < pr.contributions.size(); ++c)
+        point_from[i][c].row(r) = pr.contributions[c].displacement_m.transpose();
+      PointSummary& ps = summary.points[i];
+      if (pr.displacement_m.norm() > ps.max_displacement_m || k == 0) {
+        ps.max_displacement_m = pr.displacement_m.norm();
+        ps.max_displacement_time_s = frame.t;
+        ps.displacement_at_max_m = pr.displacement_m;
+        ps.contributions_at_max = pr.contributions;
+      }
+      if (options.unit_load_split) {
+        const Eigen::Vector2d ev = in_plane_eigenvalues(pr.compliance_m_per_n);
+        if (ev(0) > ps.max_compliance_m_per_n) ps.max_compliance_m_per_n = ev(0), ps.max_compliance_time_s = frame.t;
+        if (ev(1) < ps.min_compliance_m_per_n) ps.min_compliance_m_per_n = ev(1), ps.min_compliance_time_s = frame.t;
+      }
+    }
+  }
+
+  // The chains' tension (N) and elongation (m), the drives' moment (N m) and
+  // twist (rad) at output time k; the worst relative mismatch of a chain's
+  // tension against the dynamics'.
+  void record_chains_and_drives(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
+    if (chain_names.empty() && drive_names.empty()) {
+      for (const auto& c : pose.chains) {
+        chain_names.push_back(c.chain);
+        chain_tension.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        chain_elongation.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+      }
+      for (const auto& d : pose.drives) {
+        drive_names.push_back(d.drive);
+        drive_moment.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        drive_twist.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+      }
+    }
+    for (size_t c = 0; c < pose.chains.size(); ++c) {
+      chain_tension[c](Eigen::Index(k), 0) = pose.chains[c].tension_n;
+      chain_elongation[c](Eigen::Index(k), 0) = pose.chains[c].elongation_m;
+      for (const auto& cf : frame.chains)
+        if (cf.name == pose.chains[c].chain && cf.tension_N > 0)
+          summary.worst_chain_mismatch = std::max(summary.worst_chain_mismatch,
+                                                  std::abs(pose.chains[c].tension_n - cf.tension_N) / cf.tension_N);
+    }
+    for (size_t d = 0; d < pose.drives.size(); ++d) {
+      drive_moment[d](Eigen::Index(k), 0) = pose.drives[d].moment_on_j_nm;
+      drive_twist[d](Eigen::Index(k), 0) = pose.drives[d].twist_rad;
+    }
+  }
+
+  // The parts' envelopes over the motion (steps index all output times).
+  void write_envelopes(const std::vector<mech::Frame>& motion) {
+    std::vector<double> step_times;  // fields at some output times only: the envelope's steps index all of them
+    if (!options.field_steps.empty())
+      for (const auto& frame : motion) step_times.push_back(frame.t);
+    for (size_t p = 0; p < parts.size(); ++p) {
+      bodies[p]->write_envelope(post::layout::kDisplacementMagnitude, "m", envelopes[p].max_u, envelopes[p].step_u, post::layout::kEnvelopeMax,
+                                step_times);
+      bodies[p]->write_envelope(post::layout::kVonMises, "Pa", envelopes[p].max_vm, envelopes[p].step_vm, post::layout::kEnvelopeMax, step_times);
+    }
+  }
+
+  // The static study: the parts' fields and the points' results at the static pose.
+  void record_static_study(const PoseSolution& pose, const mech::Frame& static_pose) {
+    summary.has_static_study = true;
+    summary.static_max_displacement_m = pose.max_displacement_m;
+    summary.static_max_displacement_body = pose.max_displacement_body;
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const PartField& field = pose.part(parts[p].body());
+      post::BodyWriter& w = *bodies[p];
+      w.write_static(post::layout::static_name(post::layout::kPosition), "m",
+                     world_position(parts[p].model.mesh, static_pose.bodies[size_t(part_body[p])]),
+                     post::kVectorComponents);
+      w.write_static(post::layout::static_name(post::layout::kDisplacement), "m", field.displacement_m, post::kVectorComponents);
+      w.write_static(post::layout::static_name(post::layout::kDisplacementMagnitude), "m", field.displacement_m.rowwise().norm());
+      w.write_static(post::layout::static_name(post::layout::kVonMises), "Pa", field.von_mises_pa);
+      summary.parts[p].static_von_mises_pa = field.von_mises_pa.maxCoeff();
+    }
+    for (size_t i = 0; i < P; ++i) {
+      PointSummary& ps = summary.points[i];
+      ps.has_static_study = true;
+      ps.static_displacement_m = pose.points[i].displacement_m;
+      ps.static_contributions = pose.points[i].contributions;
+      ps.static_compliance_m_per_n = pose.points[i].compliance_m_per_n;
+    }
+  }
+
+  // The histories over the motion: largest |u|, the points', chains' and drives'.
+  void write_histories() {
+    writer.write_history(post::layout::kAssemblyMaxDisplacement, "m", max_u);
+    for (size_t i = 0; i < P; ++i) summary.points[i].displacement_history_m = point_u[i];
+    for (size_t i = 0; i < P; ++i) {
+      const std::string base = post::layout::kAssemblyPointPrefix + options.points[i].name;
+      writer.write_history(base + ".displacement", "m", point_u[i], post::kVectorComponents);
+      writer.write_history(base + ".displacement_magnitude", "m", point_mag[i]);
+      writer.write_history(base + ".rotation", "rad", point_rot[i], post::kVectorComponents);
+      if (options.unit_load_split) {
+        writer.write_history(base + ".compliance", "m/N", point_compliance[i],
+                             {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"});
+        for (size_t c = 0; c < point_from[i].size(); ++c)
+          writer.write_history(base + ".from." + point_from_names[i][c], "m", point_from[i][c], post::kVectorComponents);
+      }
+    }
+    for (size_t c = 0; c < chain_names.size(); ++c) {
+      writer.write_history("assembly.chain." + chain_names[c] + ".tension", "N", chain_tension[c]);
+      writer.write_history("assembly.chain." + chain_names[c] + ".elongation", "m", chain_elongation[c]);
+    }
+    for (size_t d = 0; d < drive_names.size(); ++d) {
+      writer.write_history("assembly.drive." + drive_names[d] + ".moment", "N*m", drive_moment[d]);
+      writer.write_history("assembly.drive." + drive_names[d] + ".twist", "rad", drive_twist[d]);
+    }
+  }
+};
+
+// Solves the motion's poses in blocks of kPosesPerBlock and records each;
+// the summary takes the indeterminacy of the first pose.
+void solve_motion_in_blocks(ElasticAssembly& assembly, const std::vector<mech::Frame>& motion, const Log& log,
+                            AssemblyRecorder& recorder) {
+  const size_t T = motion.size();
+  Progress progress(log, "  elastic assembly: output times", long(T));
+  for (size_t first = 0; first < T; first += kPosesPerBlock) {
+    const size_t count = std::min(kPosesPerBlock, T - first);
+    const std::vector<mech::Frame> block(motion.begin() + long(first), motion.begin() + long(first + count));
+    const std::vector<PoseSolution> poses = assembly.solve(block);
+    if (first == 0) recorder.summary.indeterminacy = poses.front().indeterminacy;
+    for (size_t f = 0; f < count; ++f) recorder.record(poses[f], first + f, motion[first + f]);
+    progress.advance(long(first + count));
+  }
+  progress.finish();
+}
+
 }  // namespace
 
 AssemblySummary analyse_assembly_over_motion(const std::vector<structure::Part>& parts,
@@ -79,130 +314,8 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
   require(!motion.empty(), "elastic assembly: no output times to analyse");
   require(assembly.is_set_up(), "elastic assembly: not every part is set up (ElasticAssembly::set_up_part)");
   AssemblySummary summary;
-  const size_t T = motion.size();
-
-  // Writers and envelopes of every part's assembly body.
-  std::vector<post::BodyWriter*> bodies;
-  std::vector<BodyEnvelope> envelopes(parts.size());
-  std::vector<int> part_body(parts.size());
-  for (size_t p = 0; p < parts.size(); ++p) {
-    const fem::Mesh& mesh = parts[p].model.mesh;
-    post::BodyWriter& w = writer.add_body(post::layout::kAssemblyBodyPrefix + parts[p].body(), mesh);
-    w.begin_series({{.name = post::layout::kPosition, .units = "m", .components = 3, .component_names = post::kVectorComponents,
-                     .geometry = true},
-                    {post::layout::kDisplacement, "m", 3, post::kVectorComponents},
-                    {post::layout::kDisplacementMagnitude, "m", 1, {}},
-                    {post::layout::kVonMises, "Pa", 1, {}}});
-    bodies.push_back(&w);
-    const fem::Index N = mesh.node_count();
-    envelopes[p] = {Eigen::VectorXd::Constant(N, -1.0), Eigen::VectorXd::Constant(N, -1.0),
-                    post::IndexMatrix::Zero(N, 1), post::IndexMatrix::Zero(N, 1)};
-    part_body[p] = body_index(model, parts[p].body());
-    summary.parts.push_back({parts[p].body(), 0.0, 0.0});
-  }
-
-  // Histories, filled pose by pose.
-  const size_t P = options.points.size();
-  post::FieldMatrix max_u(T, 1);
-  std::vector<post::FieldMatrix> point_u(P, post::FieldMatrix(T, 3)), point_mag(P, post::FieldMatrix(T, 1)),
-      point_rot(P, post::FieldMatrix(T, 3)), point_compliance(P, post::FieldMatrix(T, 9));
-  std::vector<std::vector<post::FieldMatrix>> point_from(P);
-  std::vector<std::vector<std::string>> point_from_names(P);
-  std::vector<std::string> chain_names, drive_names;
-  std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
-  for (size_t i = 0; i < P; ++i) {
-    summary.points.push_back({.name = options.points[i].name, .body = options.points[i].body});
-    summary.points.back().min_compliance_m_per_n = std::numeric_limits<double>::infinity();
-  }
-
-  auto record = [&](const PoseSolution& pose, size_t k) {
-    const mech::Frame& frame = motion[k];
-    max_u(Eigen::Index(k), 0) = pose.max_displacement_m;
-    if (pose.max_displacement_m > summary.max_displacement_m || k == 0) {
-      summary.max_displacement_m = pose.max_displacement_m;
-      summary.max_displacement_time_s = frame.t;
-      summary.max_displacement_body = pose.max_displacement_body;
-    }
-    for (size_t p = 0; p < parts.size(); ++p) {
-      const PartField& field = pose.part(parts[p].body());
-      const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
-      if (options.field_steps.empty() || options.field_steps.at(k))
-        bodies[p]->write_step(frame.t, {{post::layout::kPosition, world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])])},
-                                        {post::layout::kDisplacement, field.displacement_m},
-                                        {post::layout::kDisplacementMagnitude, magnitude},
-                                        {post::layout::kVonMises, field.von_mises_pa}});
-      BodyEnvelope& e = envelopes[p];
-#pragma omp parallel for schedule(static)
-      for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
-        if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
-        if (field.von_mises_pa(i) > e.max_vm(i)) e.max_vm(i) = field.von_mises_pa(i), e.step_vm(i, 0) = fem::Index(k);
-      }
-      summary.parts[p].max_von_mises_pa = std::max(summary.parts[p].max_von_mises_pa, field.von_mises_pa.maxCoeff());
-    }
-    for (size_t i = 0; i < P; ++i) {
-      const PointResult& pr = pose.points[i];
-      const Eigen::Index r = Eigen::Index(k);
-      point_u[i].row(r) = pr.displacement_m.transpose();
-      point_mag[i](r, 0) = pr.displacement_m.norm();
-      point_rot[i].row(r) = pr.rotation_rad.transpose();
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) point_compliance[i](r, 3 * a + b) = pr.compliance_m_per_n(a, b);
-      if (point_from[i].empty())
-        for (const auto& c : pr.contributions) {
-          point_from[i].push_back(post::FieldMatrix::Zero(Eigen::Index(T), 3));
-          point_from_names[i].push_back(c.name);
-        }
-      for (size_t c = 0; c < pr.contributions.size(); ++c)
-        point_from[i][c].row(r) = pr.contributions[c].displacement_m.transpose();
-      PointSummary& ps = summary.points[i];
-      if (pr.displacement_m.norm() > ps.max_displacement_m || k == 0) {
-        ps.max_displacement_m = pr.displacement_m.norm();
-        ps.max_displacement_time_s = frame.t;
-        ps.displacement_at_max_m = pr.displacement_m;
-        ps.contributions_at_max = pr.contributions;
-      }
-      if (options.unit_load_split) {
-        const Eigen::Vector2d ev = in_plane_eigenvalues(pr.compliance_m_per_n);
-        if (ev(0) > ps.max_compliance_m_per_n) ps.max_compliance_m_per_n = ev(0), ps.max_compliance_time_s = frame.t;
-        if (ev(1) < ps.min_compliance_m_per_n) ps.min_compliance_m_per_n = ev(1), ps.min_compliance_time_s = frame.t;
-      }
-    }
-    if (chain_names.empty() && drive_names.empty()) {
-      for (const auto& c : pose.chains) {
-        chain_names.push_back(c.chain);
-        chain_tension.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
-        chain_elongation.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
-      }
-      for (const auto& d : pose.drives) {
-        drive_names.push_back(d.drive);
-        drive_moment.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
-        drive_twist.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
-      }
-    }
-    for (size_t c = 0; c < pose.chains.size(); ++c) {
-      chain_tension[c](Eigen::Index(k), 0) = pose.chains[c].tension_n;
-      chain_elongation[c](Eigen::Index(k), 0) = pose.chains[c].elongation_m;
-      for (const auto& cf : frame.chains)
-        if (cf.name == pose.chains[c].chain && cf.tension_N > 0)
-          summary.worst_chain_mismatch = std::max(summary.worst_chain_mismatch,
-                                                  std::abs(pose.chains[c].tension_n - cf.tension_N) / cf.tension_N);
-    }
-    for (size_t d = 0; d < pose.drives.size(); ++d) {
-      drive_moment[d](Eigen::Index(k), 0) = pose.drives[d].moment_on_j_nm;
-      drive_twist[d](Eigen::Index(k), 0) = pose.drives[d].twist_rad;
-    }
-  };
-
-  Progress progress(log, "  elastic assembly: output times", long(T));
-  for (size_t first = 0; first < T; first += kPosesPerBlock) {
-    const size_t count = std::min(kPosesPerBlock, T - first);
-    const std::vector<mech::Frame> block(motion.begin() + long(first), motion.begin() + long(first + count));
-    const std::vector<PoseSolution> poses = assembly.solve(block);
-    if (first == 0) summary.indeterminacy = poses.front().indeterminacy;
-    for (size_t f = 0; f < count; ++f) record(poses[f], first + f);
-    progress.advance(long(first + count));
-  }
-  progress.finish();
+  AssemblyRecorder recorder(parts, model, writer, options, motion.size(), summary);
+  solve_motion_in_blocks(assembly, motion, log, recorder);
   const bool determinate = summary.indeterminacy.in_plane == 0;
   if (determinate && summary.worst_chain_mismatch > 1e-6)
     fail(
@@ -210,62 +323,9 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
         "{:.2e} of it (tolerance 1e-6)",
         summary.worst_chain_mismatch);
 
-  std::vector<double> step_times;  // fields at some output times only: the envelope's steps index all of them
-  if (!options.field_steps.empty())
-    for (const auto& frame : motion) step_times.push_back(frame.t);
-  for (size_t p = 0; p < parts.size(); ++p) {
-    bodies[p]->write_envelope(post::layout::kDisplacementMagnitude, "m", envelopes[p].max_u, envelopes[p].step_u, post::layout::kEnvelopeMax,
-                              step_times);
-    bodies[p]->write_envelope(post::layout::kVonMises, "Pa", envelopes[p].max_vm, envelopes[p].step_vm, post::layout::kEnvelopeMax, step_times);
-  }
-
-  if (static_pose) {
-    const PoseSolution pose = assembly.solve(*static_pose);
-    summary.has_static_study = true;
-    summary.static_max_displacement_m = pose.max_displacement_m;
-    summary.static_max_displacement_body = pose.max_displacement_body;
-    for (size_t p = 0; p < parts.size(); ++p) {
-      const PartField& field = pose.part(parts[p].body());
-      post::BodyWriter& w = *bodies[p];
-      w.write_static(post::layout::static_name(post::layout::kPosition), "m",
-                     world_position(parts[p].model.mesh, static_pose->bodies[size_t(part_body[p])]),
-                     post::kVectorComponents);
-      w.write_static(post::layout::static_name(post::layout::kDisplacement), "m", field.displacement_m, post::kVectorComponents);
-      w.write_static(post::layout::static_name(post::layout::kDisplacementMagnitude), "m", field.displacement_m.rowwise().norm());
-      w.write_static(post::layout::static_name(post::layout::kVonMises), "Pa", field.von_mises_pa);
-      summary.parts[p].static_von_mises_pa = field.von_mises_pa.maxCoeff();
-    }
-    for (size_t i = 0; i < P; ++i) {
-      PointSummary& ps = summary.points[i];
-      ps.has_static_study = true;
-      ps.static_displacement_m = pose.points[i].displacement_m;
-      ps.static_contributions = pose.points[i].contributions;
-      ps.static_compliance_m_per_n = pose.points[i].compliance_m_per_n;
-    }
-  }
-
-  writer.write_history(post::layout::kAssemblyMaxDisplacement, "m", max_u);
-  for (size_t i = 0; i < P; ++i) summary.points[i].displacement_history_m = point_u[i];
-  for (size_t i = 0; i < P; ++i) {
-    const std::string base = post::layout::kAssemblyPointPrefix + options.points[i].name;
-    writer.write_history(base + ".displacement", "m", point_u[i], post::kVectorComponents);
-    writer.write_history(base + ".displacement_magnitude", "m", point_mag[i]);
-    writer.write_history(base + ".rotation", "rad", point_rot[i], post::kVectorComponents);
-    if (options.unit_load_split) {
-      writer.write_history(base + ".compliance", "m/N", point_compliance[i],
-                           {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"});
-      for (size_t c = 0; c < point_from[i].size(); ++c)
-        writer.write_history(base + ".from." + point_from_names[i][c], "m", point_from[i][c], post::kVectorComponents);
-    }
-  }
-  for (size_t c = 0; c < chain_names.size(); ++c) {
-    writer.write_history("assembly.chain." + chain_names[c] + ".tension", "N", chain_tension[c]);
-    writer.write_history("assembly.chain." + chain_names[c] + ".elongation", "m", chain_elongation[c]);
-  }
-  for (size_t d = 0; d < drive_names.size(); ++d) {
-    writer.write_history("assembly.drive." + drive_names[d] + ".moment", "N*m", drive_moment[d]);
-    writer.write_history("assembly.drive." + drive_names[d] + ".twist", "rad", drive_twist[d]);
-  }
+  recorder.write_envelopes(motion);
+  if (static_pose) recorder.record_static_study(assembly.solve(*static_pose), *static_pose);
+  recorder.write_histories();
   summary.statistics = assembly.statistics();
   return summary;
 }
