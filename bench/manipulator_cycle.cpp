@@ -97,7 +97,7 @@ int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s, con
                 1e3 * st.pose_seconds(), st.loads_seconds, st.load_solve_seconds, st.system_seconds, st.recovery_seconds,
                 st.setup_seconds + poses, per_link, (st.setup_seconds + poses) / std::max(per_link, 1e-9));
   }
-  // The vibration (issue 14) when the case turns it on: its own line, and
+  // The vibration when the case turns it on: its own line, and
   // the cycle's limit ratio below is of the stress pipeline without it.
   double vibration = 0.0;
   if (s.vibration) {
@@ -125,7 +125,7 @@ int run_one(const std::string& case_path, double size_mm, double dgemm_gf_s, con
               100.0 * flops / std::max(factorize, 1e-9) / (dgemm_gf_s * 1e9), dgemm_gf_s, limit,
               (s.total_seconds - vibration) / std::max(limit, 1e-9));
   // The aggregate rate: the parts factorized side by side (one BLAS thread
-  // each), their flops over the wall time they took together (issue 13
+  // each), their flops over the wall time they took together (the
   // target: 60 % of DGEMM). One after the other it is the line above.
   const auto& fr = s.factorization;
   if (fr.side_by_side > 1)

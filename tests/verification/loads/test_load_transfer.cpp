@@ -29,7 +29,7 @@ TEST(LoadTransferVerification, AcceleratedLinkBalancedAtItsBoresIsASimplySupport
   // force balanced by the two pin reactions m a / 2 (distributing couplings
   // on the bores): a simply supported beam, M_mid = R L/2 - q (L/2 + e)^2/2,
   // sigma_xx = M_mid (h/2) / I. Reference, model and evaluation:
-  // kinetofem/verification/accelerated_link.hpp. Tolerance 2 % (issue 4) on
+  // kinetofem/verification/accelerated_link.hpp. Tolerance 2 % (kBeamTheoryTolerance, there) on
   // the recovered nodal stress at the extreme fibres at mid-span.
   const kv::AcceleratedLinkResult r = kv::solve_accelerated_link(beam_mesh());
   ASSERT_GT(r.top_nodes, 0);

@@ -165,7 +165,7 @@ TEST(DynamicsFourBar, FreeMotionIdasAndCvodesAgree) {
   std::printf("four-bar free motion IDAS vs CVODES: angles %.2e rel (swing %.3f rad), reactions %.2e rel\n%s%s",
               err / scale, scale, err_force / force_scale, ggl.format_checks().c_str(), minimal.format_checks().c_str());
   EXPECT_GT(scale, 0.1);
-  EXPECT_LT(err / scale, 1e-6);          // issue 3: paths agree to 1e-6
+  EXPECT_LT(err / scale, 1e-6);          // paths agree to 1e-6 of the length scale
   EXPECT_LT(err_force / force_scale, 1e-6);
   EXPECT_LT(ggl.summary.max_drift_relative, 1e-8);
   EXPECT_LT(ggl.summary.energy_balance_error, 1e-8);  // conservative run

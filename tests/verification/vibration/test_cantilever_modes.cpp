@@ -1,4 +1,4 @@
-// Verification 1 (issue 14): natural frequencies of a cantilever of solid
+// Vibration verification 1 (docs/vibration.md): natural frequencies of a cantilever of solid
 // elements (HEX20) against Timoshenko beam theory.
 //
 // Beam L = 1 m, depth D = 0.1 m (y), thickness t = 0.05 m (z), steel E =

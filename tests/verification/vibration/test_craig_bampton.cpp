@@ -2,8 +2,8 @@
 // the full FE eigen-solve, with the default part-mode rule (fixed-interface
 // modes up to 2 x the highest frequency of interest, f_max = the full model's
 // 5th frequency, plus the residual vectors). Reference: the full model's first
-// five frequencies; tolerance 1e-4 relative (issue 14, verification 4's
-// tolerance). (c) also prints the error against the cutoff factor with and
+// five frequencies; tolerance 1e-4 relative (vibration verification 4's
+// tolerance, docs/vibration.md). (c) also prints the error against the cutoff factor with and
 // without the residual vectors (the reason for the default).
 //
 // (a) Supported part, coupling interface: the tip-mass cantilever of

@@ -1,4 +1,4 @@
-// Verification 2 (issue 14): a free-free part. The beam of
+// Vibration verification 2 (docs/vibration.md): a free-free part. The beam of
 // test_cantilever_modes.cpp (L = 1 m, D = 0.1 m, t = 0.05 m, nu = 0) with no
 // support, HEX20 16 x 4 x 2: the shift-invert Lanczos with a negative shift
 // (K - sigma M positive definite although K is singular) gives the six

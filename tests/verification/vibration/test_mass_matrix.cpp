@@ -3,7 +3,7 @@
 // v = v0 + omega x x against the part's mass properties (solver/rigid_body.hpp),
 // 1/2 m |v_c|^2 + 1/2 omega^T I_c omega, on a distorted box (corners moved
 // at random, straight edges: both are exact there, so to round-off).
-// Plus the bad inputs of the eigen solve (issue 14): zero density, modes <= 0,
+// Plus the bad inputs of the eigen solve: zero density, modes <= 0,
 // non-convergence.
 #include <gtest/gtest.h>
 

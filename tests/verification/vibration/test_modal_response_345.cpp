@@ -1,4 +1,4 @@
-// Verification 5 (issue 14): modal response of a single-degree-of-freedom
+// Vibration verification 5 (docs/vibration.md): modal response of a single-degree-of-freedom
 // system under a 3-4-5 polynomial ramp of its base, against the closed form.
 //
 // x'' + 2 zeta w x' + w^2 x = -a(t), a the base acceleration of

@@ -1,4 +1,4 @@
-// Verification 3 (issue 14): a point mass with rotary inertia at the tip of
+// Vibration verification 3 (docs/vibration.md): a point mass with rotary inertia at the tip of
 // a slender cantilever, attached through a distributing coupling reference
 // (the elastic assembly's interface type), against the single-degree-of-
 // freedom frequency with the beam's effective mass.

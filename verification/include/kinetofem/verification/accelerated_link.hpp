@@ -13,7 +13,7 @@
 // moment):
 //   M_mid = R L / 2 - q (L/2 + e)^2 / 2,  R = q (L + 2e) / 2,
 //   sigma_xx = M_mid (h/2) / I,  I = t h^3 / 12.
-// Elasticity corrections at L/h = 15 are ~0.1 %; tolerance 2 % (issue 4) on
+// Elasticity corrections at L/h = 15 are ~0.1 %; tolerance 2 % on
 // the mean recovered nodal stress of the extreme fibres at mid-span. The
 // body force points along -y and the pins push +y: the beam sags towards -y
 // between them, so the +y fibre is in compression.
@@ -29,7 +29,7 @@ struct AcceleratedLink {
   double beam_stress_pa(double density_kg_m3) const;
 };
 
-inline constexpr double kBeamTheoryTolerance = 0.02;  // relative (issue 4)
+inline constexpr double kBeamTheoryTolerance = 0.02;  // relative: see above
 
 // beam_link.geo meshed with TET10 of 6 mm.
 fem::Mesh beam_link_mesh();

@@ -1,6 +1,6 @@
 #pragma once
-// Analytic references of the vibration checks (issue 14;
-// tests/verification/vibration/).
+// Analytic references of the vibration checks
+// (tests/verification/vibration/ and `kinetofem verify`).
 //
 // Timoshenko beam (shear deformation and rotary inertia), uniform, length
 // L, E, G, density rho, area A, second moment I, shear coefficient kappa:
