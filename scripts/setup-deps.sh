@@ -20,21 +20,4 @@ PACKAGES=(
   clang libclang-rt-14-dev lld   # libFuzzer, the sanitizer tree's linker: scripts/configure-instrumented.sh
 )
 
-missing=()
-for pkg in "${PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$pkg")
-  fi
-done
-
-if ((${#missing[@]} == 0)); then
-  echo "setup-deps: all ${#PACKAGES[@]} packages present"
-  exit 0
-fi
-
-echo "setup-deps: installing ${missing[*]}"
-SUDO=""
-if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -q
-$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+bash "$(dirname "$0")/install-debian-packages.sh" setup-deps "${PACKAGES[@]}"

@@ -13,21 +13,4 @@ set -euo pipefail
 # Xvfb its "fixed" font; OpenGL (Mesa's software rasteriser) comes as a Depends.
 PACKAGES=(paraview python3-paraview xvfb xauth xfonts-base)
 
-missing=()
-for pkg in "${PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$pkg")
-  fi
-done
-
-if ((${#missing[@]} == 0)); then
-  echo "setup-test-deps: all ${#PACKAGES[@]} packages present"
-  exit 0
-fi
-
-echo "setup-test-deps: installing ${missing[*]}"
-SUDO=""
-if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -q
-$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+bash "$(dirname "$0")/install-debian-packages.sh" setup-test-deps "${PACKAGES[@]}"
