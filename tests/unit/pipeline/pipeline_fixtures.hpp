@@ -24,10 +24,12 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/lever_chain.hpp"
 #include "kinetofem/mechanisms/manipulator_models.hpp"
 #include "kinetofem/mechanisms/motion_law.hpp"
@@ -151,6 +153,25 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// Three beam pendulum parts of different lengths: different parts, different
+// factors (the factor-sharing tests).
+inline std::vector<Part> three_beams() {
+  std::vector<Part> parts;
+  for (int k = 0; k < 3; ++k) {
+    BeamSize size;
+    size.length_m *= 1.0 + 0.25 * k;
+    parts.push_back(beam_part("beam" + std::to_string(k), beam_pendulum_attachments(), size));
+  }
+  return parts;
+}
+
+// A quiet log that outlives the analyses made with it (they keep a reference
+// to their log: a temporary Log::quiet() would dangle).
+inline const Log& quiet_log() {
+  static const Log log = Log::quiet();
+  return log;
 }
 
 }  // namespace kinetofem::pipeline::test

@@ -16,23 +16,6 @@
 namespace kinetofem::pipeline {
 namespace {
 
-std::vector<Part> three_beams() {
-  std::vector<Part> parts;
-  for (int k = 0; k < 3; ++k) {
-    test::BeamSize size;
-    size.length_m *= 1.0 + 0.25 * k;  // different parts, different factors
-    parts.push_back(test::beam_part("beam" + std::to_string(k), test::beam_pendulum_attachments(), size));
-  }
-  return parts;
-}
-
-// The analyses keep a reference to the log they were made with: it must
-// outlive them (a temporary Log::quiet() would dangle).
-const Log& quiet() {
-  static const Log log = Log::quiet();
-  return log;
-}
-
 Eigen::MatrixXd unit_loads(const SupportedPart& part) {
   const Eigen::Index dofs = 3 * part.model().mesh.node_count();
   Eigen::MatrixXd f = Eigen::MatrixXd::Zero(dofs, 2);
@@ -42,13 +25,13 @@ Eigen::MatrixXd unit_loads(const SupportedPart& part) {
 }
 
 TEST(FactorizeParts, SideBySideGivesTheFactorsOfOneAfterTheOther) {
-  const std::vector<Part> parts = three_beams();
+  const std::vector<Part> parts = test::three_beams();
   fem::StaticSolverOptions sequential_options, concurrent_options;
   sequential_options.concurrent_parts = 1;
   concurrent_options.concurrent_parts = 2;
   PartFactorizationReport sequential_report, concurrent_report;
-  auto sequential = factorize_parts(parts, sequential_options, quiet(), &sequential_report);
-  auto concurrent = factorize_parts(parts, concurrent_options, quiet(), &concurrent_report);
+  auto sequential = factorize_parts(parts, sequential_options, test::quiet_log(), &sequential_report);
+  auto concurrent = factorize_parts(parts, concurrent_options, test::quiet_log(), &concurrent_report);
   EXPECT_EQ(sequential_report.side_by_side, 1);
   EXPECT_EQ(concurrent_report.side_by_side, 2) << concurrent_report.why;
   for (std::size_t k = 0; k < parts.size(); ++k) {
@@ -70,16 +53,16 @@ TEST(FactorizeParts, SideBySideGivesTheFactorsOfOneAfterTheOther) {
 }
 
 TEST(FactorizeParts, FactorsAboveTheLimitTogetherGoOneAfterTheOther) {
-  const std::vector<Part> parts = three_beams();
+  const std::vector<Part> parts = test::three_beams();
   fem::StaticSolverOptions probe;
   probe.concurrent_parts = 1;
   PartFactorizationReport sizes;
-  factorize_parts(parts, probe, quiet(), &sizes);
+  factorize_parts(parts, probe, test::quiet_log(), &sizes);
   fem::StaticSolverOptions tight;
   tight.concurrent_parts = 2;
   tight.direct.max_factor_bytes = 0.9 * sizes.predicted_factor_bytes;  // each fits alone, not all together
   PartFactorizationReport report;
-  const auto supported = factorize_parts(parts, tight, quiet(), &report);
+  const auto supported = factorize_parts(parts, tight, test::quiet_log(), &report);
   EXPECT_EQ(report.side_by_side, 1);
   EXPECT_NE(report.why.find("exceed"), std::string::npos) << report.why;
   for (const auto& s : supported) EXPECT_FALSE(s->analysis().is_factorized());
@@ -95,10 +78,10 @@ TEST(FactorizeParts, NoPartsPrintNothing) {
 }
 
 TEST(FactorizeParts, SolvingBeforeADeferredFactorizationIsAnError) {
-  const std::vector<Part> parts = three_beams();
+  const std::vector<Part> parts = test::three_beams();
   fem::StaticSolverOptions options;
   options.concurrent_parts = 1;
-  auto supported = factorize_parts(parts, options, quiet());
+  auto supported = factorize_parts(parts, options, test::quiet_log());
   EXPECT_THROW(supported[0]->analysis().solve_forces(unit_loads(*supported[0])), Error);
 }
 

@@ -10,36 +10,20 @@
 namespace kinetofem::pipeline {
 namespace {
 
-std::vector<Part> three_beams() {
-  std::vector<Part> parts;
-  for (int k = 0; k < 3; ++k) {
-    test::BeamSize size;
-    size.length_m *= 1.0 + 0.25 * k;
-    parts.push_back(test::beam_part("beam" + std::to_string(k), test::beam_pendulum_attachments(), size));
-  }
-  return parts;
-}
-
-// The analyses keep a reference to the log they were made with.
-const Log& quiet() {
-  static const Log log = Log::quiet();
-  return log;
-}
-
 // A factor limit that each part fits alone but not all of them together.
 fem::StaticSolverOptions tight_for(const std::vector<Part>& parts) {
   fem::StaticSolverOptions probe;
   probe.concurrent_parts = 1;
   PartFactorizationReport sizes;
-  factorize_parts(parts, probe, quiet(), &sizes);
+  factorize_parts(parts, probe, test::quiet_log(), &sizes);
   fem::StaticSolverOptions tight;
   tight.direct.max_factor_bytes = 0.9 * sizes.predicted_factor_bytes;
   return tight;
 }
 
 TEST(PartFactors, StressOnlyFreesEachPartAfterItsStress) {
-  const std::vector<Part> parts = three_beams();
-  PartFactors factors(parts, fem::StaticSolverOptions{}, FactorStages{}, "case.toml", quiet());
+  const std::vector<Part> parts = test::three_beams();
+  PartFactors factors(parts, fem::StaticSolverOptions{}, FactorStages{}, "case.toml", test::quiet_log());
   EXPECT_TRUE(factors.factors_fit_together());
   EXPECT_NO_THROW(factors.require_stages_fit());
   EXPECT_TRUE(factors.lend_analysis(0).is_factorized());
@@ -50,8 +34,8 @@ TEST(PartFactors, StressOnlyFreesEachPartAfterItsStress) {
 }
 
 TEST(PartFactors, TheAssemblyKeepsAFactorOnlyWhileItsPosesSolveWithIt) {
-  const std::vector<Part> parts = three_beams();
-  PartFactors factors(parts, fem::StaticSolverOptions{}, FactorStages{.assembly = true}, "case.toml", quiet());
+  const std::vector<Part> parts = test::three_beams();
+  PartFactors factors(parts, fem::StaticSolverOptions{}, FactorStages{.assembly = true}, "case.toml", test::quiet_log());
   factors.lend(0);
   factors.done(0, FactorUser::Stress);
   ASSERT_NE(factors.held(0), nullptr);
@@ -68,9 +52,9 @@ TEST(PartFactors, TheAssemblyKeepsAFactorOnlyWhileItsPosesSolveWithIt) {
 }
 
 TEST(PartFactors, TheVibrationKeepsEveryFactorUntilItIsDone) {
-  const std::vector<Part> parts = three_beams();
+  const std::vector<Part> parts = test::three_beams();
   PartFactors factors(parts, fem::StaticSolverOptions{}, FactorStages{.assembly = true, .vibration = true}, "case.toml",
-                      quiet());
+                      test::quiet_log());
   factors.lend(0);
   factors.done(0, FactorUser::Stress);
   factors.done(0, FactorUser::AssemblySetUp, false);
@@ -82,24 +66,24 @@ TEST(PartFactors, TheVibrationKeepsEveryFactorUntilItIsDone) {
 }
 
 TEST(PartFactors, FactorsNotFittingTogetherGoOneAtATimeAndForceSuperposition) {
-  const std::vector<Part> parts = three_beams();
+  const std::vector<Part> parts = test::three_beams();
   const fem::StaticSolverOptions tight = tight_for(parts);
-  PartFactors factors(parts, tight, FactorStages{.assembly = true}, "case.toml", quiet());
+  PartFactors factors(parts, tight, FactorStages{.assembly = true}, "case.toml", test::quiet_log());
   EXPECT_FALSE(factors.factors_fit_together());
   EXPECT_EQ(factors.report().side_by_side, 1);
   EXPECT_TRUE(factors.superpose_assembly_loads(2));
   EXPECT_FALSE(factors.held(0)->is_factorized()) << "made right before its part's stress";
   EXPECT_TRUE(factors.lend_analysis(0).is_factorized());
 
-  PartFactors fitting(parts, fem::StaticSolverOptions{}, FactorStages{.assembly = true}, "case.toml", quiet());
+  PartFactors fitting(parts, fem::StaticSolverOptions{}, FactorStages{.assembly = true}, "case.toml", test::quiet_log());
   EXPECT_FALSE(fitting.superpose_assembly_loads(kMinSuperposedPoses - 1));
   EXPECT_TRUE(fitting.superpose_assembly_loads(kMinSuperposedPoses));
 }
 
 TEST(PartFactors, TheVibrationWithFactorsNotFittingTogetherIsAnError) {
-  const std::vector<Part> parts = three_beams();
+  const std::vector<Part> parts = test::three_beams();
   PartFactors factors(parts, tight_for(parts), FactorStages{.assembly = true, .vibration = true}, "case.toml",
-                      quiet());
+                      test::quiet_log());
   try {
     factors.require_stages_fit();
     FAIL() << "no error";
