@@ -2,6 +2,9 @@
 // FeModel — one linear-elastic solid body ready to solve: mesh, material,
 // supports and load cases. SI units throughout (m, N, Pa, kg/m^3).
 //
+// The material is one per part, or one per element set (the solids of a
+// welded part, FeModel::set_materials).
+//
 // Supports prescribe displacement components on node sets; they are
 // eliminated from the system (the reduced stiffness stays symmetric and the
 // prescribed values move to the right-hand side). Loads of one load case are
@@ -53,9 +56,20 @@ struct LoadCase {
   BodyForceField body_force;                               // optional, N/m^3
 };
 
+// A material for the elements of one element set (a solid of a welded part); elements in no
+// listed set take FeModel::material.
+struct ElementSetMaterial {
+  std::string element_set;  // a key of Mesh::element_sets
+  IsotropicMaterial material;
+};
+
 struct FeModel {
   Mesh mesh;
-  IsotropicMaterial material;
+  IsotropicMaterial material;  // of every element in no set of set_materials
+  // Per-solid materials; an element set named here must exist in the mesh and an element may
+  // be in at most one of them (element_materials.hpp checks both and is where every consumer
+  // looks an element's material up). Empty: one material for the whole part.
+  std::vector<ElementSetMaterial> set_materials;
   std::vector<DisplacementSupport> supports;
 };
 
