@@ -92,9 +92,14 @@ void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>&
     auto it = std::find_if(model.bodies.begin(), model.bodies.end(),
                            [&](const mech::Body& b) { return b.name == part.body(); });
     require(it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.label, part.body());
-    require(!it->fixed, "{}: body '{}' is the ground, which is rigid here: give the part to a moving body",
-            part.label, part.body());
     const fem::MassProperties& mp = part.mass;
+    if (it->fixed) {
+      // The frame: the ground does not move, so its mass enters no equation
+      // of motion; its weight loads its own stress and the foundation.
+      log.info("  body '{}' (the ground) carries a frame part held on '{}': {:.4f} kg, not in the dynamics", it->name,
+               part.held_face, mp.mass_kg);
+      continue;
+    }
     const std::string mesh_line =
         fmt::format("mesh {:.4f} kg, centre of mass ({:.2f}, {:.2f}) mm, I_zz {:.5g} kg m^2", mp.mass_kg,
                     mp.centre_of_mass_m.x() / kMm, mp.centre_of_mass_m.y() / kMm, mp.inertia_about_com_kgm2(2, 2));

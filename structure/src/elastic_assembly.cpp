@@ -90,6 +90,10 @@ struct ElasticAssembly::Impl {
   struct PartData {
     std::string body, label;
     int body_index = -1;
+    // The frame (a part of the ground): held on its foundation, so it has no
+    // rigid motion alpha and no equilibrium rows (the foundation takes the
+    // resultant); its interfaces move by G^T u of the held model alone.
+    bool held = false;
     fem::FeModel supported;
     loads::LinkDefinition attachments;  // as given (joints, drives and all)
     std::unique_ptr<fem::LinearStaticAnalysis> own_analysis;
@@ -192,6 +196,9 @@ struct ElasticAssembly::Impl {
   }
   const std::string& body_name(int b) const { return model.bodies[size_t(b)].name; }
   bool ground(int b) const { return moving[size_t(b)] < 0; }
+  // The ground without a frame part: fixed, no interfaces (its side of a
+  // joint or drive is held in space).
+  bool rigid_ground(int b) const { return ground(b) && part_of_body[size_t(b)] < 0; }
 
   // A new interface of `body`: on an elastic part the coupling of
   // `face_set`, reference (point, centroid z) or the centroid itself.
@@ -282,6 +289,7 @@ struct ElasticAssembly::Impl {
       Eigen::VectorXd e = Eigen::VectorXd::Zero(6 * B);
       for (size_t k = 0; k < interfaces.size(); ++k) {
         const int mb = moving[size_t(interfaces[k].body)];
+        if (mb < 0) continue;  // the frame's side: a support, like the rigid ground's
         e.segment<6>(6 * mb) += transfer(pose.arm[k]).transpose() * r.segment<6>(6 * Eigen::Index(k)).transpose();
       }
       for (int i = 0; i < 6 * B; ++i)
@@ -315,7 +323,8 @@ struct ElasticAssembly::Impl {
   struct ChainPose {
     double k = 0, b = 0;
     Vector3d T, n;
-    Eigen::Matrix<double, 1, 6> g;  // elongation = g u_roller
+    Eigen::Matrix<double, 1, 6> g;  // elongation = g u_roller (+ g_hinge u_hinge)
+    Eigen::Matrix<double, 1, 6> g_hinge = Eigen::Matrix<double, 1, 6>::Zero();  // hinge on a frame part
   };
   struct PoseMembers {
     Eigen::MatrixXd S;
@@ -437,7 +446,8 @@ void require_factor_of(const fem::FeModel& supported, const fem::LinearStaticAna
   const fem::FeModel& theirs = factor.model();
   bool same = theirs.mesh.node_count() == supported.mesh.node_count() && theirs.supports.size() == supported.supports.size();
   for (size_t k = 0; same && k < theirs.supports.size(); ++k) same = theirs.supports[k].nodes == supported.supports[k].nodes;
-  require(same, "{}: the factorization given is not of this part with its 3-2-1 support", label);
+  require(same, "{}: the factorization given is not of this part with its support (3-2-1, or a frame's foundation)",
+          label);
 }
 
 }  // namespace
@@ -456,9 +466,14 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   for (size_t j = 0; j < model.joints.size(); ++j) add_joint(j);
   for (size_t d = 0; d < model.motion_drives.size(); ++d) add_drive(d);
   for (const AssemblyPoint& tp : options.points) add_point(tp);
+  for (const auto& part : parts)
+    require(!part->held || !part->interfaces.empty(),
+            "{}: no joint, chain or drive of the mechanism acts on the frame (body '{}'): name the frame's bores in "
+            "the ground joints",
+            part->label, part->body);
 
   stats.elastic_parts = int(parts.size());
-  stats.rigid_bodies = moving_count - int(parts.size());
+  stats.rigid_bodies = moving_count - int(std::count_if(parts.begin(), parts.end(), [](const auto& p) { return !p->held; }));
   stats.interfaces = int(interfaces.size());
   stats.setup_seconds = clock.seconds();
   if (set_up_now)
@@ -479,17 +494,23 @@ void ElasticAssembly::Impl::add_part(const Part& part, fem::LinearStaticAnalysis
   data->body = part.body();
   data->label = part.label.empty() ? fmt::format("part '{}'", part.body()) : part.label;
   data->body_index = body_index(part.body(), data->label);
-  require(!model.bodies[size_t(data->body_index)].fixed,
-          "{}: body '{}' is the ground, which is rigid and fixed here: give the part to a moving body", data->label,
-          data->body);
+  data->held = model.bodies[size_t(data->body_index)].fixed;
+  require(data->held || part.held_face.empty(),
+          "{}: held_face '{}' is for a part of the ground (a frame); body '{}' moves, and a moving part is held by no "
+          "foundation",
+          data->label, part.held_face, data->body);
   require(part_of_body[size_t(data->body_index)] < 0, "{}: body '{}' has two parts", data->label, data->body);
   part_of_body[size_t(data->body_index)] = int(parts.size());
   data->supported = part.model;
   data->attachments = part.attachments;
   data->attachments.body = part.body();
-  std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
-  for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
-  data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
+  if (data->held) {
+    data->supported.supports = foundation_support(part);
+  } else {
+    std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
+    for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
+    data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
+  }
   if (factor) {
     require_factor_of(data->supported, *factor, data->label);
     data->given_analysis = factor;
@@ -560,10 +581,12 @@ void ElasticAssembly::Impl::add_joint(size_t j) {
   if (jd.tie == mech::AssemblyTie::ChainSpring) {
     tie_chain(jd, joint, who);
   } else {
-    if (!ground(jd.body_i))
+    // A side on the ground is held in space, or on the frame's bore when the
+    // ground has a part.
+    if (!rigid_ground(jd.body_i))
       jd.if_i = add_interface(jd.body_i, Kind::Joint, joint.name, face_set_of_joint(jd.body_i, joint.name),
                               named_point(jd.body_i, joint.point_i, who), false);
-    if (!ground(jd.body_j))
+    if (!rigid_ground(jd.body_j))
       jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
                               named_point(jd.body_j, joint.point_j, who), false);
   }
@@ -587,6 +610,13 @@ void ElasticAssembly::Impl::tie_chain(JointData& jd, const mech::Joint& joint, c
   jd.radius = joint.radius_m;
   jd.sigma = joint.wrap_ccw ? 1.0 : -1.0;
   jd.hinge = named_point(jd.body_i, joint.point_i, who);
+  // A hinge on a face of the frame (a ground part naming a face set for the
+  // chain) moves with that face; otherwise it is held in space.
+  const int frame = part_of_body[size_t(jd.body_i)];
+  if (frame >= 0)
+    for (const auto& a : parts[size_t(frame)]->attachments.joints)
+      if (a.joint == joint.name)
+        jd.if_i = add_interface(jd.body_i, Kind::Joint, joint.name, a.face_set, jd.hinge, false);
   jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
                           named_point(jd.body_j, joint.point_j, who), false);
 }
@@ -608,7 +638,7 @@ void ElasticAssembly::Impl::add_drive(size_t d) {
 }
 
 int ElasticAssembly::Impl::add_drive_side(int body, const std::string& drive) {
-  if (ground(body)) return -1;
+  if (rigid_ground(body)) return -1;
   std::string face_set;
   const int p = part_of_body[size_t(body)];
   if (p >= 0) {
@@ -823,11 +853,17 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
       cp.n = (lift(hinge, A.z()) - cp.T).normalized();
       Eigen::Matrix<double, 3, 6> Bm;
       Bm << Eigen::Matrix3d::Identity(), -skew(cp.T - A);
-      cp.g = -cp.n.transpose() * Bm;  // elongation = n . (u_hinge - u_T), u_hinge = 0
-      S.block<6, 6>(6 * jd.if_j, 6 * jd.if_j) += cp.k * cp.g.transpose() * cp.g;
-      max_compliance = std::max(max_compliance, 1.0 / cp.k);
+      cp.g = -cp.n.transpose() * Bm;  // elongation = n . (u_hinge - u_T), u_hinge = 0 on the rigid ground
       spring_g.push_back(Eigen::RowVectorXd::Zero(6 * M));
       spring_g.back().segment<6>(6 * jd.if_j) = cp.g;
+      if (jd.if_i >= 0) {  // the hinge on a face of the frame: u_hinge is that interface's motion at the hinge
+        Eigen::Matrix<double, 3, 6> Bh;
+        Bh << Eigen::Matrix3d::Identity(), -skew(lift(hinge, A.z()) - pose.P[size_t(jd.if_i)]);
+        cp.g_hinge = cp.n.transpose() * Bh;
+        spring_g.back().segment<6>(6 * jd.if_i) = cp.g_hinge;
+      }
+      S += cp.k * spring_g.back().transpose() * spring_g.back();
+      max_compliance = std::max(max_compliance, 1.0 / cp.k);
       spring_k.push_back(cp.k);
       spring_name.push_back("chain." + joint.name);
       continue;
@@ -933,9 +969,10 @@ ElasticAssembly::Impl::PoseSystem ElasticAssembly::Impl::assemble_pose_system(
   for (int k = 0; k < M; ++k) {
     const Interface& iface = interfaces[size_t(k)];
     const int mb = moving[size_t(iface.body)];
-    // (a) u_k - sum_l F_kl lambda_l - R_k alpha = d_k
+    // (a) u_k - sum_l F_kl lambda_l - R_k alpha = d_k; on the frame (mb < 0)
+    // no alpha: its foundation holds it
     A.block<6, 6>(ou + 6 * k, ou + 6 * k).setIdentity();
-    A.block<6, 6>(ou + 6 * k, oa + 6 * mb) = -transfer(pose.arm[size_t(k)]);
+    if (mb >= 0) A.block<6, 6>(ou + 6 * k, oa + 6 * mb) = -transfer(pose.arm[size_t(k)]);
     if (iface.part >= 0) {
       const PartData& part = *parts[size_t(iface.part)];
       const Matrix6d Q = rotate6(pose.R[size_t(iface.body)]);
@@ -948,8 +985,9 @@ ElasticAssembly::Impl::PoseSystem ElasticAssembly::Impl::assemble_pose_system(
     }
     // (b) lambda_k - (C^T mu)_k + (S u)_k = 0
     A.block<6, 6>(ol + 6 * k, ol + 6 * k).setIdentity();
-    // (c) sum_k R_k^T lambda_k = -r_b
-    A.block<6, 6>(oa + 6 * mb, ol + 6 * k) = transfer(pose.arm[size_t(k)]).transpose();
+    // (c) sum_k R_k^T lambda_k = -r_b; none for the frame (the foundation
+    // takes its resultant)
+    if (mb >= 0) A.block<6, 6>(oa + 6 * mb, ol + 6 * k) = transfer(pose.arm[size_t(k)]).transpose();
   }
   A.block(ol, ou, 6 * M, 6 * M) = members.S;
   for (int r = 0; r < nc; ++r) {
@@ -1037,7 +1075,7 @@ void ElasticAssembly::Impl::add_joint_loads(PoseSolution& out, const mech::Frame
       cr.axial_stiffness_n = jd.ea;
       cr.free_length_m = cp.b;
       cr.stiffness_n_per_m = cp.k;
-      cr.elongation_m = cp.g * solved.u_of(jd.if_j);
+      cr.elongation_m = cp.g.dot(solved.u_of(jd.if_j)) + cp.g_hinge.dot(solved.u_of(jd.if_i));
       cr.tension_n = cp.k * cr.elongation_m;
       cr.tangent_point_m = cp.T;
       cr.direction = cp.n;
@@ -1122,6 +1160,7 @@ void ElasticAssembly::Impl::split_by_unit_loads(PointResult& pr, int k, const Po
   const auto& spring_k = members.spring_k;
   auto deformation_of = [&](int l) -> Vector6d {  // u_l - R_l alpha = F lambda + d (world)
     const int mb = moving[size_t(interfaces[size_t(l)].body)];
+    if (mb < 0) return solved.u_of(l);  // the frame: no rigid motion
     return solved.u_of(l) - transfer(pose.arm[size_t(l)]) * x.segment<6>(oa + 6 * mb);
   };
   for (const auto& part : parts) pr.contributions.push_back({"part." + part->body, Vector3d::Zero()});
@@ -1157,6 +1196,10 @@ void ElasticAssembly::Impl::collect_field_inputs(const Pose& pose, const PoseUnk
     for (size_t l = 0; l < part.interfaces.size(); ++l)
       lambda_body.segment<6>(6 * Eigen::Index(l)) = Q.transpose() * solved.lambda_of(part.interfaces[l]);
     field_inputs.lambda_body[p] = std::move(lambda_body);
+    if (part.held) {  // the frame moves only by its deformation
+      field_inputs.translation[p] = field_inputs.rotation[p] = Vector3d::Zero();
+      continue;
+    }
     field_inputs.translation[p] = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)]);
     field_inputs.rotation[p] = R.transpose() * x.segment<3>(oa + 6 * moving[size_t(b)] + 3);
   }
@@ -1336,6 +1379,11 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
           Fl.col(Eigen::Index(f)) = part.loads->loads_at(frame).forces;
           fem::resultant(mesh, Fl.col(Eigen::Index(f)), Vector3d::Zero(), force, moment);
         }
+        // The frame (a part of the ground) has no multibody body to check
+        // against: the ground carries no mass properties and no equations of
+        // motion in the dynamics, and its foundation takes whatever resultant
+        // its own weight and loads have.
+        if (mb < 0) continue;
         const Eigen::Matrix3d R = rot_z(frame.bodies[size_t(part.body_index)].q.z());
         Vector6d r;
         r << R * force, R * moment;

@@ -77,8 +77,9 @@ void place_mesh(fem::Mesh& mesh, const PartPlacement& placement);
 // Writes each part's mass properties into its body of `model` (unless its
 // spec keeps the case's values: PartSpec::mass_from_mesh; `specs` empty:
 // every part's from its mesh, else one spec per part, in order) and prints
-// both, mesh and case, per body. Throws Error for a part on the ground or on
-// a body the model lacks.
+// both, mesh and case, per body. A part on the ground (the frame) only has
+// its mass printed: the ground does not move. Throws Error for a part on a
+// body the model lacks.
 void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log,
                            const std::vector<PartSpec>& specs = {});
 

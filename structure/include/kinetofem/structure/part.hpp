@@ -12,7 +12,9 @@
 // is built (its source: a file or parametric dimensions, its placement) is
 // the pipeline's (pipeline::PartSpec, pipeline::build_part_models).
 #include <string>
+#include <vector>
 
+#include "kinetofem/core/error.hpp"
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
@@ -28,9 +30,32 @@ struct Part {
   fem::FeModel model;               // mesh in the body frame, material; no supports
   fem::MassProperties mass;         // of the mesh, body frame
   double meshing_seconds = 0.0;     // wall time its mesh took
+  // A part of the ground body (the frame: a column, a base plate) is held on
+  // this face set, its foundation (every node fixed in x, y and z); empty
+  // for the parts of moving bodies, which only a 3-2-1 support holds.
+  std::string held_face;
   const std::string& body() const { return attachments.body; }
   // The label, or "part '<body>'" when none was given.
   std::string name() const { return label.empty() ? "part '" + body() + "'" : label; }
 };
+
+// The foundation of a frame part: every node of its held_face fixed in x, y
+// and z. Throws Error naming the part when it has no held_face or its mesh
+// lacks that face set.
+inline std::vector<fem::DisplacementSupport> foundation_support(const Part& part) {
+  require(!part.held_face.empty(), "{}: a part of the ground (a frame) needs held_face, the face set of its foundation",
+          part.name());
+  std::vector<fem::Index> nodes;
+  try {
+    nodes = fem::nodes_of_faces(part.model.mesh.face_set(part.held_face));
+  } catch (const Error& e) {
+    fail("{}: held_face '{}': {}", part.name(), part.held_face, e.what());
+  }
+  require(!nodes.empty(), "{}: held_face '{}' has no nodes", part.name(), part.held_face);
+  fem::DisplacementSupport held;
+  held.label = "foundation '" + part.held_face + "'";
+  held.nodes = std::move(nodes);
+  return {held};
+}
 
 }  // namespace kinetofem::structure
