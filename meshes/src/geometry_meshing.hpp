@@ -20,6 +20,10 @@ struct GeometryJob {
   // element_size_m / model_unit_m (the model's own unit) and the nodes are
   // multiplied by model_unit_m afterwards, so the mesh is in metres.
   double model_unit_m = 1.0;
+  // Loads the model in place of importing `file` (CAD files only): e.g.
+  // several files fragmented into one welded part. Unset: `file` is imported
+  // (a .geo opened) and its volumes are the physical group "body".
+  std::function<void(GmshSession& session, const std::string& context)> load_model;
   // Called with the loaded model (after the volume check, before meshing):
   // e.g. adds physical groups. `context` is the file name for messages.
   std::function<void(GmshSession& session, const std::string& context)> before_meshing;

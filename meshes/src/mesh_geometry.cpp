@@ -205,6 +205,8 @@ fem::Mesh mesh_geometry_in_this_process(const std::filesystem::path& file, const
       gmsh::option::setString("Geometry.OCCTargetUnit", "MM");
       gmsh::open(context);
     });
+  } else if (job.load_model) {
+    job.load_model(session, context);
   } else {
     const auto shape_count = session.call(context, "importing the shape", [&] {
       if (extension != ".brep") gmsh::option::setString("Geometry.OCCTargetUnit", "M");

@@ -19,6 +19,8 @@
 #include "kinetofem/core/text_file.hpp"
 #include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
+#include "kinetofem/solver/element_traits.hpp"
+#include "welded_part.hpp"
 
 namespace kinetofem::meshes {
 
@@ -352,7 +354,19 @@ void add_face_selections(GmshSession& session, const std::string& context,
                     : std::string());
     }
     std::vector<int> tags;
-    for (const auto& [dim, tag] : inside) tags.push_back(tag);
+    session.call(context, "gmsh::model::getAdjacencies", [&] {
+      for (const auto& [dim, tag] : inside) {
+        // A seam between two welded solids lies inside the part: no load
+        // acts there.
+        std::vector<int> up, down;
+        gmsh::model::getAdjacencies(dim, tag, up, down);
+        if (up.size() <= 1) tags.push_back(tag);
+      }
+    });
+    require(!tags.empty(),
+            "face set '{}' of {}: the box {} mm holds only seams between welded solids, no "
+            "surface on the part's outside",
+            selection.name, context, box_mm(box));
     std::sort(tags.begin(), tags.end());
     session.call(context, fmt::format("adding face set '{}'", selection.name), [&] {
       const int group = gmsh::model::addPhysicalGroup(2, tags);
@@ -373,6 +387,75 @@ std::string cache_key_extra(const PartFileOptions& part, double model_unit_m) {
                        box[4], box[5]);
   }
   return key;
+}
+
+// The welded part's share of the cache key: the tolerance and every solid
+// (name, point, and its file's text: it is not the key's main file).
+std::string weld_cache_key(const PartFileOptions& part) {
+  std::string key = fmt::format("\nweld v1 tolerance={:.17g}", part.weld_tolerance_m);
+  for (const auto& solid : part.solids) {
+    key += fmt::format("\nsolid {}:{}", solid.name.size(), solid.name);
+    if (solid.inside_m)
+      key += fmt::format(" inside {:.17g} {:.17g} {:.17g}", solid.inside_m->x(), solid.inside_m->y(),
+                         solid.inside_m->z());
+    if (!solid.file.empty()) {
+      std::ifstream in(solid.file, std::ios::binary);
+      std::stringstream content;
+      content << in.rdbuf();
+      key += fmt::format(" file {} bytes\n", content.str().size()) + content.str();
+    }
+  }
+  return key;
+}
+
+bool is_cad(const std::string& extension) {
+  return extension == ".step" || extension == ".stp" || extension == ".iges" ||
+         extension == ".igs" || extension == ".brep";
+}
+
+// Before any Gmsh call: the solids' names, files and points, and the tolerance.
+void check_solids(const std::string& context, const std::filesystem::path& file,
+                  const PartFileOptions& part) {
+  require(std::isfinite(part.weld_tolerance_m) && part.weld_tolerance_m >= 0,
+          "{}: weld_tolerance = {} m must be a length >= 0", context, part.weld_tolerance_m);
+  std::set<std::string> names;
+  for (const auto& solid : part.solids) {
+    require(!solid.name.empty() &&
+                std::all_of(solid.name.begin(), solid.name.end(),
+                            [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; }),
+            "{}: [[solid]] name '{}' must be non-empty letters, digits, '_' or '-' (it names the "
+            "sets solid.<name> and weld.<a>.<b>)",
+            context, solid.name);
+    require(names.insert(solid.name).second, "{}: [[solid]] name '{}' is given twice", context,
+            solid.name);
+    require(solid.file.empty() || !solid.inside_m,
+            "{}: [[solid]] '{}' gives both file and inside_mm; a solid is its own file or a solid "
+            "of the part file",
+            context, solid.name);
+    if (solid.inside_m)
+      require(solid.inside_m->allFinite(), "{}: [[solid]] '{}': inside_mm is not finite", context,
+              solid.name);
+    if (!solid.file.empty()) {
+      std::error_code error;
+      require(std::filesystem::is_regular_file(solid.file, error), "{}: [[solid]] '{}': no such file",
+              solid.file.string(), solid.name);
+      require(is_cad(detail::lower_extension(solid.file)),
+              "{}: [[solid]] '{}': a solid's file must be STEP, IGES or BREP (.step, .stp, .iges, "
+              ".igs, .brep)",
+              solid.file.string(), solid.name);
+    } else {
+      require(!file.empty(),
+              "{}: [[solid]] '{}' has no file, and the part has no file it could be a solid of",
+              context, solid.name);
+    }
+  }
+  if (file.empty())
+    require(!part.solids.empty(), "the part has no file and no [[solid]] files");
+  else if (!part.solids.empty())
+    require(is_cad(detail::lower_extension(file)),
+            "{}: [[solid]] entries need a STEP, IGES or BREP part file ({} files name their "
+            "volumes as physical groups)",
+            context, detail::lower_extension(file));
 }
 
 // A part is one body: its elements connected through shared nodes. Two
@@ -445,10 +528,14 @@ std::optional<double> cad_file_length_unit_m(const std::filesystem::path& file) 
   return step ? step_file_unit(text) : iges_file_unit(text);
 }
 
-fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOptions& part,
+fem::Mesh mesh_part_file(const std::filesystem::path& part_file, const PartFileOptions& part,
                          const MeshOptions& mesh) {
-  const std::string context = file.string();
   mesh.validate();
+  check_solids(part_file.empty() ? std::string("the part") : part_file.string(), part_file, part);
+  // A part of [[solid]] files only: the first stands for the part (messages,
+  // the cache key's main file; the others are in weld_cache_key).
+  const std::filesystem::path file = part_file.empty() ? part.solids.front().file : part_file;
+  const std::string context = file.string();
   std::error_code error;
   require(std::filesystem::is_regular_file(file, error), "{}: no such part file", context);
   const std::string extension = detail::lower_extension(file);
@@ -496,6 +583,18 @@ fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOption
             context, extension);
     model_unit_m = *part.length_unit_m;
   }
+  // Solid files: a .brep in the part's length unit; with a STEP/IGES among
+  // them the model is in metres.
+  for (const auto& solid : part.solids) {
+    if (solid.file.empty()) continue;
+    const std::string solid_extension = detail::lower_extension(solid.file);
+    if (solid_extension == ".brep")
+      require(part.length_unit_m.has_value(),
+              "{}: [[solid]] '{}': .brep files carry no length unit: give the part's length_unit",
+              solid.file.string(), solid.name);
+    else if (!carries_unit)
+      model_unit_m = 1.0;
+  }
 
   if (extension == ".msh") return mesh_msh_part(file, part, mesh, model_unit_m);
 
@@ -505,7 +604,23 @@ fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOption
     add_face_selections(session, name, part.face_sets, model_unit_m);
   };
   job.cache_key_extra = cache_key_extra(part, model_unit_m);
+  if (is_cad(extension)) {
+    // Every CAD part goes through the welding import: a file of one solid
+    // without [[solid]] entries is imported there as it always was.
+    detail::WeldedPartJob weld;
+    weld.part_file = part_file;
+    weld.solids = part.solids;
+    weld.model_unit_m = model_unit_m;
+    weld.brep_unit_m = part.length_unit_m.value_or(0.0);
+    weld.tolerance_m = part.weld_tolerance_m;
+    weld.element_size_m = mesh.element_size_m;
+    job.load_model = [weld](GmshSession& session, const std::string& name) {
+      detail::load_welded_part(session, name, weld);
+    };
+    job.cache_key_extra += weld_cache_key(part);
+  }
   fem::Mesh meshed = detail::mesh_geometry_file(file, mesh, job);
+  detail::add_weld_sets(meshed);
   check_one_body(context, meshed);
   return meshed;
 }

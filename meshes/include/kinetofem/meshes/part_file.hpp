@@ -34,7 +34,11 @@
 //
 // Mesh cache (MeshOptions::cache_dir): for geometry files the key covers the
 // file's text, every file a .geo reads (geo_file_scan.hpp), the options, the
-// length unit and every selection (name and box). .msh files are not cached.
+// length unit, every selection (name and box), the weld tolerance and every
+// PartSolid (name, point, and its file's text). .msh files are not cached.
+//
+// Face selections take only surfaces on the outside of the part (a seam
+// between two welded solids is inside).
 //
 // Errors (kinetofem::Error, one line naming the file, and the selection for
 // a selection): a missing file; an unknown extension (the accepted ones are
@@ -68,6 +72,58 @@ struct FaceSelection {
   Eigen::Vector3d box_max_m = Eigen::Vector3d::Zero();
 };
 
+// A part welded from several solids (docs/meshes.md, "Welded parts"). The
+// solids of a STEP/IGES/BREP part file and of its PartSolid files are
+// imported into one OpenCASCADE model and fragmented together
+// (gmsh::model::occ::fragment, with Geometry.ToleranceBoolean set to the weld
+// tolerance), so solids that touch, or nearly touch within the tolerance,
+// share their interface faces and the mesh is conformal: they are welded
+// (bonded) along the whole interface.
+//
+// Each solid keeps its name: the element set "solid.<name>" (solid_set_name).
+// Every seam where two solids meet is a face set and a node set
+// "weld.<a>.<b>" (weld_set_name, a < b alphabetically): the element faces
+// shared by an element of solid a and one of solid b, oriented out of solid a.
+// The element and node set "body" is the whole part, as for one solid.
+//
+// Names: a PartSolid's name; the solids of the part file that no PartSolid
+// names are "solid1", "solid2", ... by their position in the file. A part file
+// of one solid with no PartSolid is meshed exactly as before (no solid or weld
+// sets).
+//
+// Errors (one line, naming the file and the solids): a solid connected to no
+// other through shared faces after the fragment (a gap above the tolerance:
+// the two nearest solids of different groups and their gap in mm, measured
+// between their surface meshes); two solids overlapping (a fragment piece
+// inside both) with a piece thicker than the tolerance (the overlap's volume
+// in mm^3 and its thickness, the least extent of its box, in mm); a PartSolid
+// with both or (for a part file of several solids) neither of file and
+// inside_m, a point in no solid, two PartSolids naming one solid, a name given
+// twice or empty; a PartSolid file that is not STEP/IGES/BREP or holds other
+// than one solid; solids for a .geo or .msh part file.
+struct PartSolid {
+  std::string name;  // element set "solid.<name>"; letters, digits, '_' and '-'
+  // Its own STEP/IGES/BREP file (a .brep in the part's length unit), or empty:
+  // a solid of the part's file.
+  std::filesystem::path file;
+  // A point inside a solid of the part's file, its own coordinates in metres
+  // (for a part drawn in mm: the mm values times 1e-3). Without a file and
+  // without this point, the PartSolid names the part file's only solid.
+  std::optional<Eigen::Vector3d> inside_m;
+};
+
+// Default weld tolerance, m: 0.05 mm, a tenth of a typical CAD gap between
+// parts drawn as "touching" by offsetting (0.5 mm and more is a real gap), and
+// far above OpenCASCADE's own precision (1e-7 m).
+inline constexpr double kDefaultWeldToleranceM = 0.05e-3;
+
+// "solid.<name>" and "weld.<a>.<b>" with a < b (the order of the arguments
+// does not matter).
+std::string solid_set_name(const std::string& solid);
+std::string weld_set_name(const std::string& solid_a, const std::string& solid_b);
+inline constexpr const char* kSolidSetPrefix = "solid.";
+inline constexpr const char* kWeldSetPrefix = "weld.";
+
 struct PartFileOptions {
   // Metres per file unit: 1e-3 for mm, 1 for m. Required for .geo, .brep
   // and .msh; for STEP/IGES the file's own unit is used and, if this is
@@ -82,10 +138,17 @@ struct PartFileOptions {
   // own folder only.
   std::filesystem::path case_folder;
   bool trusted = false;
+  // The named solids of a welded part (PartSolid above); empty: the solids of
+  // the part file, named by position.
+  std::vector<PartSolid> solids;
+  // Solids closer than this are joined (welded) by the fragment; m, >= 0.
+  double weld_tolerance_m = kDefaultWeldToleranceM;
 };
 
 // The mesh of the part in `file`, in metres, in the file's frame, with the
-// face sets of `part`. Throws Error as described above.
+// face sets of `part`. `file` may be empty when every PartSolid has its own
+// file (the part is their union; the first solid's file then stands for the
+// part in messages). Throws Error as described above.
 fem::Mesh mesh_part_file(const std::filesystem::path& file, const PartFileOptions& part,
                          const MeshOptions& mesh);
 
