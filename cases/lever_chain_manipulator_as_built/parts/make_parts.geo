@@ -22,16 +22,20 @@ Return
 
 // A plate that ends at a hub is cut by a cylinder of the hub's outer radius ("cutter").
 
-// The mechanism (SPEC §1 example) in mm. "Delete All" clears variables too, so every part
-// calls this first.
-Macro Mechanism
-  a = 500; c = 350; h = 100; r = 75; b0 = a*c/(c + r);
-  xB0 = r; yB0 = a - b0;                    // B0 = (75, 88.235) mm
-Return
+// The mechanism (SPEC §1 example) in mm.
+a = 500; c = 350; h = 100; r = 75; b0 = a*c/(c + r);
+xB0 = r; yB0 = a - b0;                      // B0 = (75, 88.235) mm
+
+// The dimensions the sensitivity band varies (cases/sensitivity/as_built_band), with the
+// values of this case; e.g. gmsh -0 make_parts.geo -setnumber lever_plate_t 25
+// -setstring prefix "lever_t25_" writes lever_t25_lever.step and so on.
+DefineConstant[ lever_plate_t = 16 ];       // lever plate thickness (z)
+DefineConstant[ lever_hub_A_length = 40 ];  // the lever's hub at A along the pin: the "lug"
+DefineConstant[ chain_z = 211 ];            // the chain's plane: where the anchor stud ends
+DefineConstant[ prefix = "" ];              // prefix of the written files' names
 
 // ---------------------------------------------------------------------------------------
 // Frame (the ground's part), world coordinates: A0 at the origin, B0 = (r, a - b0).
-Call Mechanism;
 foot_y = -500;                              // foundation 500 mm below A0
 foot = newv; Box(foot) = {-160, foot_y, -160, 320, 20, 320};
 col_o = newv; Box(col_o) = {-80, foot_y + 20, -80, 160, 100 - (foot_y + 20), 160};
@@ -43,32 +47,26 @@ shaft_hole = newv; Cylinder(shaft_hole) = {0, 0, 70, 0, 0, 40, 40/2};   // the d
 head() = BooleanDifference{ Volume{head_box}; Delete; }{ Volume{shaft_hole}; Delete; };
 hx = 0; hy = 0; hz0 = 95; hz1 = 145; hD = 80; hd = 40; Call Hub;
 hub_A0() = hub();
-stud = newv; Cylinder(stud) = {xB0, yB0, 95, 0, 0, 211 - 95, 25};
-Save "frame.step";
+stud = newv; Cylinder(stud) = {xB0, yB0, 95, 0, 0, chain_z - 95, 25};
+Save StrCat(prefix, "frame.step");
 
 // ---------------------------------------------------------------------------------------
 // Lever 1: A0 at the origin, A = (0, a); plate mid-plane z = 0 (placed at z = 175).
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
-Call Mechanism;
+Recursive Delete { Volume{:}; }
 hx = 0; hy = 0; hz0 = -25; hz1 = 25; hD = 80; hd = 40; Call Hub;
 hub_A0() = hub();
-hx = 0; hy = a; hz0 = -20; hz1 = 20; hD = 70; hd = 30; Call Hub;
+hx = 0; hy = a; hz0 = -lever_hub_A_length/2; hz1 = lever_hub_A_length/2; hD = 70; hd = 30; Call Hub;
 hub_A() = hub();
-plate_box = newv; Box(plate_box) = {-30, 0, -8, 60, a, 16};
+plate_box = newv; Box(plate_box) = {-30, 0, -lever_plate_t/2, 60, a, lever_plate_t};
 cut_0 = newv; Cylinder(cut_0) = {0, 0, -100, 0, 0, 200, 80/2};
 cut_1 = newv; Cylinder(cut_1) = {0, a, -100, 0, 0, 200, 70/2};
 plate() = BooleanDifference{ Volume{plate_box}; Delete; }{ Volume{cut_0, cut_1}; Delete; };
-Save "lever.step";
+Save StrCat(prefix, "lever.step");
 
 // ---------------------------------------------------------------------------------------
 // Arm 2: A (roller centre) at the origin, C = (-c, 0), H = (-c, h); web mid-plane z = 0
 // (placed at z = 245); the chain roller behind the web, towards the lever.
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
-Call Mechanism;
+Recursive Delete { Volume{:}; }
 hx = 0; hy = 0; hz0 = -45; hz1 = 20; hD = 70; hd = 30; Call Hub;
 hub_A() = hub();
 roll_o = newv; Cylinder(roll_o) = {0, 0, -40, 0, 0, 12, r};
@@ -78,19 +76,16 @@ web_box = newv; Box(web_box) = {-c - 40, -30, -6, c + 40, 60, 12};
 cut_0 = newv; Cylinder(cut_0) = {0, 0, -100, 0, 0, 200, 70/2};
 web() = BooleanDifference{ Volume{web_box}; Delete; }{ Volume{cut_0}; Delete; };
 pad = newv; Box(pad) = {-c - 40, 30, -40, 80, 15, 80};
-Save "arm.step";
+Save StrCat(prefix, "arm.step");
 
 // ---------------------------------------------------------------------------------------
 // Gripper: H at the origin (the arm's (-c, h)); mid-plane z = 0 (placed at z = 245, the
 // arm's web plane). Carrier plate on the arm's pad, rotary module, parallel gripper unit.
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
-Call Mechanism;
+Recursive Delete { Volume{:}; }
 carrier = newv; Box(carrier) = {-60, -55, -40, 120, 15, 80};
 rotary = newv; Cylinder(rotary) = {0, -40, 0, 0, 80, 0, 50};
 grip = newv; Box(grip) = {-60, 40, -40, 120, 60, 80};
-Save "gripper.step";
+Save StrCat(prefix, "gripper.step");
 
 // Stop here: gmsh -0 would otherwise also write untitled.geo_unrolled.
 Exit;

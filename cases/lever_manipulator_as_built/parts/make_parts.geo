@@ -22,15 +22,12 @@ Macro Hub
 Return
 
 // The four-bar equivalent to the SPEC §1 example (SPEC §2) in mm: A0 = (0, 0), A = (0, a),
-// B = (r, a), B0 = (r, a - b0). "Delete All" clears variables too, so every part calls this.
-Macro Mechanism
-  a = 500; c = 350; h = 100; r = 75; b0 = a*c/(c + r);
-  xB0 = r; yB0 = a - b0;                    // B0 = (75, 88.235) mm, rocker BB0 = b0 = 411.765 mm
-Return
+// B = (r, a), B0 = (r, a - b0).
+a = 500; c = 350; h = 100; r = 75; b0 = a*c/(c + r);
+xB0 = r; yB0 = a - b0;                      // B0 = (75, 88.235) mm, rocker BB0 = b0 = 411.765 mm
 
 // ---------------------------------------------------------------------------------------
 // Frame (the ground's part), world coordinates: A0 at the origin.
-Call Mechanism;
 foot_y = -500;                              // foundation 500 mm below A0
 foot = newv; Box(foot) = {-160, foot_y, -160, 320, 20, 320};
 col_o = newv; Box(col_o) = {-80, foot_y + 20, -80, 160, 100 - (foot_y + 20), 160};
@@ -51,10 +48,7 @@ Save "frame.step";
 
 // ---------------------------------------------------------------------------------------
 // Lever 1: A0 at the origin, A = (0, a); plate mid-plane z = 0 (placed at z = 175).
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
-Call Mechanism;
+Recursive Delete { Volume{:}; }
 hx = 0; hy = 0; hz0 = -25; hz1 = 25; hD = 80; hd = 40; Call Hub;
 hub_A0() = hub();
 hx = 0; hy = a; hz0 = -20; hz1 = 20; hD = 70; hd = 30; Call Hub;
@@ -69,10 +63,7 @@ Save "lever.step";
 // Coupler 2 (the arm): A at the origin, B = (r, 0), C = (-c, 0), H = (-c, h); mid-plane
 // z = 0 (placed at z = 225). Head: one flame-cut lug holding bores A and B; the arm web
 // welded to it; the gripper pad on the web's end.
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
-Call Mechanism;
+Recursive Delete { Volume{:}; }
 hd_A = newv; Cylinder(hd_A) = {0, 0, -25, 0, 0, 50, 35};
 hd_B = newv; Cylinder(hd_B) = {r, 0, -25, 0, 0, 50, 35};
 hd_M = newv; Box(hd_M) = {0, -35, -25, r, 70, 50};
@@ -88,10 +79,7 @@ Save "coupler.step";
 
 // ---------------------------------------------------------------------------------------
 // Rocker 3: B0 at the origin, B = (0, b0); plate mid-plane z = 0 (placed at z = 275).
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
-Call Mechanism;
+Recursive Delete { Volume{:}; }
 hx = 0; hy = 0; hz0 = -20; hz1 = 20; hD = 60; hd = 25; Call Hub;
 hub_B0() = hub();
 hx = 0; hy = b0; hz0 = -20; hz1 = 20; hD = 60; hd = 25; Call Hub;
@@ -105,9 +93,7 @@ Save "rocker.step";
 // ---------------------------------------------------------------------------------------
 // Gripper: H at the origin (the coupler's (-c, h)); mid-plane z = 0 (placed at z = 225, the
 // coupler's web plane). Carrier plate on the coupler's pad, rotary module, parallel gripper unit.
-Delete All;
-SetFactory("OpenCASCADE");
-Geometry.OCCTargetUnit = "MM";
+Recursive Delete { Volume{:}; }
 carrier = newv; Box(carrier) = {-60, -55, -40, 120, 15, 80};
 rotary = newv; Cylinder(rotary) = {0, -40, 0, 0, 80, 0, 50};
 grip = newv; Box(grip) = {-60, 40, -40, 120, 60, 80};
