@@ -202,10 +202,10 @@ FeStaticSummary run_fe_static(const CaseFile& c, const RunOptions& options) {
 
   log.info("solving");
   fem::LinearStaticAnalysis analysis(model, log, solver_options);
-  const Eigen::MatrixXd F = fem::assemble_external_forces(model.mesh, model.material, {load});
+  const Eigen::MatrixXd F = fem::assemble_external_forces(model.mesh, analysis.materials(), {load});
   const fem::DisplacementField u = analysis.solve_forces(F).front();
   Stopwatch clock;
-  const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
+  const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, analysis.materials(), u);
   const Eigen::VectorXd magnitude = fem::displacement_magnitude(u);
   log.info("  stress recovery: {:.2f} s", clock.seconds());
 

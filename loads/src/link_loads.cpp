@@ -19,10 +19,16 @@ Eigen::Matrix3d to_body(double theta) {
   return Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
+// The link's FE model; an Error if it has none.
+const fem::FeModel& model_of(const LinkDefinition& link) {
+  require(link.model != nullptr, "link '{}' has no FE model", link.body);
+  return *link.model;
+}
+
 }  // namespace
 
 void assign_mass_properties(mech::Body& body, const fem::FeModel& model) {
-  const fem::MassProperties mp = fem::mass_properties(model.mesh, model.material);
+  const fem::MassProperties mp = fem::mass_properties(model.mesh, fem::element_materials(model));
   body.mass_kg = mp.mass_kg;
   body.com_body = mp.centre_of_mass_m.head<2>();
   body.inertia_kgm2 = mp.inertia_about_com_kgm2(2, 2);
@@ -32,9 +38,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
                      double equilibrium_tolerance)
     : link_(link),
       tolerance_(equilibrium_tolerance),
-      motion_loads_((require(link.model != nullptr, "link '{}' has no FE model", link.body),
-                     link.model->mesh),
-                    link.model->material) {
+      motion_loads_(model_of(link).mesh, fem::element_materials(model_of(link))) {
   const fem::Mesh& mesh = link.model->mesh;
   for (size_t b = 0; b < model.bodies.size(); ++b)
     if (model.bodies[b].name == link.body) body_index_ = int(b);

@@ -99,7 +99,7 @@ void step_by_step(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, c
       const Eigen::VectorXd reaction = analysis.reactions_at(u, f, supported);
       check_support_reaction(env, relative_support_reaction(reaction, f.data(), nodes), loads, frames[step], options);
       clock.restart();
-      const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
+      const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, analysis.materials(), u);
       // Deformation measure: the elastic displacement without the rigid-body
       // part the 3-2-1 support's arbitrary nodes put into it (computed once:
       // the callback gets the same field).
@@ -162,7 +162,7 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
     reaction_patterns.col(k) = analysis.reactions_at(u, P.col(k), supported);
     const fem::DisplacementField elastic = fem::remove_rigid_body_motion(model.mesh, u);
     patterns.elastic_displacement_m.col(k) = Eigen::Map<const Eigen::VectorXd>(elastic.data(), 3 * nodes);
-    const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, model.material, u);
+    const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, analysis.materials(), u);
     patterns.stress_pa.col(k) = Eigen::Map<const Eigen::VectorXd>(stress.stress_pa.data(), 6 * nodes);
   }
 

@@ -71,7 +71,7 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
     part.model.mesh = mesh_of(spec, options);
     place_mesh(part.model.mesh, spec.placement);
     part.model.material = material;
-    part.mass = fem::mass_properties(part.model.mesh, material);
+    part.mass = fem::mass_properties(part.model.mesh, fem::element_materials(part.model));
     part.meshing_seconds = clock.seconds();
     const fem::Mesh& mesh = part.model.mesh;
     log.info("  {}: {} nodes, {} elements ({}), {} DoFs, {:.3f} kg; {:.2f} s", spec.label, mesh.node_count(),

@@ -137,6 +137,17 @@ void build_pattern(const Mesh& mesh, const DofMap& dofs, SymmetricUpperMatrix& K
   std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
 }
 
+// Lame constants (lambda, mu) of each material of the elements, by material index.
+std::vector<std::pair<double, double>> lame_of(const ElementMaterials& materials) {
+  std::vector<std::pair<double, double>> out;
+  for (const IsotropicMaterial& m : materials.materials()) {
+    double lambda, mu;
+    detail::lame(m.youngs_modulus_pa, m.poisson_ratio, lambda, mu);
+    out.emplace_back(lambda, mu);
+  }
+  return out;
+}
+
 inline void atomic_add(double& target, double value) {
 #pragma omp atomic
   target += value;
@@ -180,17 +191,16 @@ void check_element_jacobians(const Mesh& mesh) {
   failure.throw_if_any();
 }
 
-AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial& material,
+AssembledStiffness assemble_stiffness(const Mesh& mesh, const ElementMaterials& materials,
                                       const DofMap& dofs) {
-  material.validate();
+  materials.validate();
   require(dofs.dof_count() == 3 * mesh.node_count(), "DoF map has {} DoFs, mesh needs {}",
           dofs.dof_count(), 3 * mesh.node_count());
   AssembledStiffness out;
   build_pattern(mesh, dofs, out.free_free);
   out.prescribed_coupling_force = Eigen::VectorXd::Zero(dofs.free_count());
   const Eigen::VectorXd& prescribed = dofs.prescribed_values();
-  double lambda, mu;
-  detail::lame(material.youngs_modulus_pa, material.poisson_ratio, lambda, mu);
+  const std::vector<std::pair<double, double>> lame = lame_of(materials);
 
   FirstFailure failure;
   Index first = 0;
@@ -206,6 +216,7 @@ AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial&
         for (Index e = 0; e < block.size(); ++e) {
           const auto nodes = block.element(e);
           const auto X = detail::element_coordinates<NPE>(mesh, nodes);
+          const auto [lambda, mu] = lame[size_t(materials.index_of(first + e))];
           const double min_det =
               detail::element_stiffness<NPE>(X, rules.for_element(X), lambda, mu, Ke);
           if (!(min_det > 1e-12 * size_cubed<NPE>(X))) {
@@ -301,7 +312,7 @@ void add_face_loads(const Mesh& mesh, const Incidence* inc, const std::vector<Fa
 
 }  // namespace
 
-Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMaterial& material,
+Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const ElementMaterials& materials,
                                          const std::vector<LoadCase>& load_cases) {
   const Index n_dof = 3 * mesh.node_count();
   Eigen::MatrixXd F = Eigen::MatrixXd::Zero(n_dof, Index(load_cases.size()));
@@ -330,14 +341,15 @@ Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMateri
                      p.pressure_pa, F, Index(k));
     }
     require(load.gravity_m_s2.allFinite(), "load case '{}': gravity is not finite", load.name);
-    if (load.body_force || !load.gravity_m_s2.isZero()) any_body_load = true;
+    if (load.body_force || load.acceleration || !load.gravity_m_s2.isZero()) any_body_load = true;
   }
   if (!any_body_load) return F;
 
-  // Body loads: f_a = int N_a (rho g + b(x)) dV, all load cases per element.
-  const double rho = material.density_kg_m3;
+  // Body loads: f_a = int N_a (rho (g + a(x)) + b(x)) dV, all load cases per
+  // element, rho the element's density.
   const Index cases = Index(load_cases.size());
   FirstFailure failure;
+  Index first = 0;
   for (const auto& block : mesh.blocks) {
     detail::dispatch_block(block.type, [&]<int NPE>() {
       const RuleTable<NPE> rule(block.type, load_quadrature(block.type));
@@ -349,6 +361,7 @@ Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMateri
         for (Index e = 0; e < block.size(); ++e) {
           const auto nodes = block.element(e);
           const auto X = detail::element_coordinates<NPE>(mesh, nodes);
+          const double rho = materials.of(first + e).density_kg_m3;
           fe.setZero();
           for (size_t q = 0; q < rule.size(); ++q) {
             const double det = detail::physical_gradients<NPE>(X, rule.dN[q], G);
@@ -358,8 +371,9 @@ Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMateri
               const LoadCase& load = load_cases[size_t(k)];
               Eigen::Vector3d b = rho * load.gravity_m_s2;
               if (load.body_force) b += load.body_force(x);
+              if (load.acceleration) b += rho * load.acceleration(x);
               if (!b.allFinite()) {
-                failure.record(e, fmt::format("load case '{}': body force is not finite at "
+                failure.record(first + e, fmt::format("load case '{}': body force is not finite at "
                                               "({:.6g}, {:.6g}, {:.6g}) m",
                                               load.name, x[0], x[1], x[2]));
                 continue;
@@ -375,18 +389,19 @@ Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMateri
         }
       }
     });
+    first += block.size();
   }
   failure.throw_if_any();
   return F;
 }
 
-Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& material,
+Eigen::VectorXd internal_forces(const Mesh& mesh, const ElementMaterials& materials,
                                 const DisplacementField& displacement) {
   require(displacement.rows() == mesh.node_count(), "displacement has {} rows, mesh {} nodes",
           displacement.rows(), mesh.node_count());
   Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * mesh.node_count());
-  double lambda, mu;
-  detail::lame(material.youngs_modulus_pa, material.poisson_ratio, lambda, mu);
+  const std::vector<std::pair<double, double>> lame = lame_of(materials);
+  Index first = 0;
   for (const auto& block : mesh.blocks) {
     detail::dispatch_block(block.type, [&]<int NPE>() {
       const detail::StiffnessRules<NPE> rules(block.type);
@@ -398,6 +413,7 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
         for (Index e = 0; e < block.size(); ++e) {
           const auto nodes = block.element(e);
           const auto X = detail::element_coordinates<NPE>(mesh, nodes);
+          const auto [lambda, mu] = lame[size_t(materials.index_of(first + e))];
           detail::element_stiffness<NPE>(X, rules.for_element(X), lambda, mu, Ke);
           for (int a = 0; a < NPE; ++a) ue.template segment<3>(3 * a) = displacement.row(nodes[size_t(a)]).transpose();
           const Eigen::Matrix<double, 3 * NPE, 1> fe = Ke * ue;
@@ -406,16 +422,17 @@ Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& mater
         }
       }
     });
+    first += block.size();
   }
   return R;
 }
 
-Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& material,
+Eigen::VectorXd internal_forces_at(const Mesh& mesh, const ElementMaterials& materials,
                                    const DisplacementField& displacement,
                                    const std::vector<Index>& nodes) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * Index(nodes.size()));
-  double lambda, mu;
-  detail::lame(material.youngs_modulus_pa, material.poisson_ratio, lambda, mu);
+  const std::vector<std::pair<double, double>> lame = lame_of(materials);
+  Index first = 0;
   for (const auto& block : mesh.blocks) {
     detail::dispatch_block(block.type, [&]<int NPE>() {
       const detail::StiffnessRules<NPE> rules(block.type);
@@ -428,6 +445,7 @@ Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& ma
           touches = touches || std::find(nodes.begin(), nodes.end(), node) != nodes.end();
         if (!touches) continue;
         const auto X = detail::element_coordinates<NPE>(mesh, element);
+        const auto [lambda, mu] = lame[size_t(materials.index_of(first + e))];
         detail::element_stiffness<NPE>(X, rules.for_element(X), lambda, mu, Ke);
         for (int a = 0; a < NPE; ++a)
           ue.template segment<3>(3 * a) = displacement.row(element[size_t(a)]).transpose();
@@ -437,6 +455,7 @@ Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& ma
             if (element[size_t(a)] == nodes[k]) out.segment<3>(3 * Index(k)) += fe.template segment<3>(3 * a);
       }
     });
+    first += block.size();
   }
   return out;
 }

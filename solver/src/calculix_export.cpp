@@ -47,7 +47,7 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
                          const std::filesystem::path& path, const CalculixDeckOptions& options) {
   const Mesh& mesh = model.mesh;
   mesh.validate();
-  model.material.validate();
+  const ElementMaterials materials = element_materials(model);
   const DofMap dofs(mesh.node_count(), model.supports);
   require(external_forces.rows() == dofs.dof_count(),
           "CalculiX deck {}: force vectors have {} rows, the model {} DoFs", path.string(),
@@ -81,10 +81,30 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
     }
   }
 
-  std::fprintf(out, "*MATERIAL, NAME=MAT1\n*ELASTIC\n%.12e, %.12e\n",
-               model.material.youngs_modulus_pa, model.material.poisson_ratio);
-  for (size_t b = 0; b < mesh.blocks.size(); ++b)
-    std::fprintf(out, "*SOLID SECTION, ELSET=E%zu, MATERIAL=MAT1\n", b + 1);
+  if (materials.uniform()) {
+    std::fprintf(out, "*MATERIAL, NAME=MAT1\n*ELASTIC\n%.12e, %.12e\n",
+                 model.material.youngs_modulus_pa, model.material.poisson_ratio);
+    for (size_t b = 0; b < mesh.blocks.size(); ++b)
+      std::fprintf(out, "*SOLID SECTION, ELSET=E%zu, MATERIAL=MAT1\n", b + 1);
+  } else {
+    // One section per material over the elements that take it; a material
+    // that no element takes gets none.
+    std::vector<std::vector<long long>> members(materials.materials().size());
+    for (Index e = 0; e < mesh.element_count(); ++e)
+      members[size_t(materials.index_of(e))].push_back(static_cast<long long>(e + 1));
+    for (size_t k = 0; k < members.size(); ++k) {
+      if (members[k].empty()) continue;
+      const IsotropicMaterial& m = materials.materials()[k];
+      const std::string whose = k == 0 ? std::string("the elements in no listed set")
+                                       : "element set '" + materials.element_set(k) + "'";
+      std::fprintf(out, "** material '%s' of %s\n", m.name.c_str(), whose.c_str());
+      std::fprintf(out, "*ELSET, ELSET=M%zu\n", k + 1);
+      write_id_list(out, members[k], 16);
+      std::fprintf(out, "*MATERIAL, NAME=MAT%zu\n*ELASTIC\n%.12e, %.12e\n", k + 1,
+                   m.youngs_modulus_pa, m.poisson_ratio);
+      std::fprintf(out, "*SOLID SECTION, ELSET=M%zu, MATERIAL=MAT%zu\n", k + 1, k + 1);
+    }
+  }
 
   // ccx accepts only homogeneous conditions in the model data; nonzero
   // values go into the first step (and stay in the later ones: OP=MOD).
@@ -148,8 +168,8 @@ void write_calculix_deck(const FeModel& model, const Eigen::MatrixXd& external_f
 
 void write_calculix_deck(const FeModel& model, const std::vector<LoadCase>& load_cases,
                          const std::filesystem::path& path, const CalculixDeckOptions& options) {
-  write_calculix_deck(model, assemble_external_forces(model.mesh, model.material, load_cases), path,
-                      options);
+  write_calculix_deck(model, assemble_external_forces(model.mesh, element_materials(model), load_cases),
+                      path, options);
 }
 
 std::vector<DisplacementField> read_calculix_dat_displacements(const std::filesystem::path& path,

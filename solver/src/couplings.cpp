@@ -124,23 +124,23 @@ Eigen::Vector3d add_bearing_pressure(const Mesh& mesh, const BoreGeometry& bore,
   return axial;
 }
 
-RigidBodyMotionLoads::RigidBodyMotionLoads(const Mesh& mesh, const IsotropicMaterial& material) {
-  const double rho = material.density_kg_m3;
+RigidBodyMotionLoads::RigidBodyMotionLoads(const Mesh& mesh, const ElementMaterials& materials) {
+  // Fields of force per unit mass: each element's density multiplies them.
   std::vector<LoadCase> basis(12);
   for (int k = 0; k < 3; ++k) {
     basis[size_t(k)].name = fmt::format("rho e_{}", k);
-    basis[size_t(k)].body_force = [rho, k](const Eigen::Vector3d&) {
-      return Eigen::Vector3d(rho * Eigen::Vector3d::Unit(k));
+    basis[size_t(k)].acceleration = [k](const Eigen::Vector3d&) {
+      return Eigen::Vector3d(Eigen::Vector3d::Unit(k));
     };
   }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       basis[size_t(3 + 3 * i + j)].name = fmt::format("rho x_{} e_{}", j, i);
-      basis[size_t(3 + 3 * i + j)].body_force = [rho, i, j](const Eigen::Vector3d& x) {
-        return Eigen::Vector3d(rho * x[j] * Eigen::Vector3d::Unit(i));
+      basis[size_t(3 + 3 * i + j)].acceleration = [i, j](const Eigen::Vector3d& x) {
+        return Eigen::Vector3d(x[j] * Eigen::Vector3d::Unit(i));
       };
     }
-  basis_ = assemble_external_forces(mesh, material, basis);
+  basis_ = assemble_external_forces(mesh, materials, basis);
   // Mass and first moments from the basis: sum over nodes of column e_k's k
   // components is rho V; of column x_j e_i's i components, rho int x_j dV.
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();

@@ -10,14 +10,13 @@
 
 namespace kinetofem::fem {
 
-SymmetricUpperMatrix assemble_mass(const Mesh& mesh, const IsotropicMaterial& material,
+SymmetricUpperMatrix assemble_mass(const Mesh& mesh, const ElementMaterials& materials,
                                    const DofMap& dofs) {
-  material.validate();
+  materials.validate();
   require(dofs.dof_count() == 3 * mesh.node_count(), "DoF map has {} DoFs, mesh needs {}",
           dofs.dof_count(), 3 * mesh.node_count());
   SymmetricUpperMatrix M;
   detail::build_upper_pattern(mesh, dofs, M);
-  const double rho = material.density_kg_m3;
   Index first = 0;
   for (const auto& block : mesh.blocks) {
     // The first failing element of the block (exceptions must not cross the
@@ -35,6 +34,7 @@ SymmetricUpperMatrix assemble_mass(const Mesh& mesh, const IsotropicMaterial& ma
         for (Index e = 0; e < block.size(); ++e) {
           const auto nodes = block.element(e);
           const auto X = detail::element_coordinates<NPE>(mesh, nodes);
+          const double rho = materials.of(first + e).density_kg_m3;
           scalar_mass.setZero();
           double min_det = std::numeric_limits<double>::infinity();
           for (size_t q = 0; q < rule.size(); ++q) {

@@ -10,16 +10,20 @@
 
 namespace kinetofem::fem {
 
-MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& material) {
-  // Moments of order 0, 1, 2 of the volume: V, int x dV, int x x^T dV.
-  double volume = 0.0;
-  Eigen::Vector3d first = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+MassProperties mass_properties(const Mesh& mesh, const ElementMaterials& materials) {
+  // Moments of order 0, 1, 2 of the volume of each material k: V_k,
+  // int x dV, int x x^T dV over its elements.
+  const size_t kinds = materials.materials().size();
+  std::vector<double> volume(kinds, 0.0);
+  std::vector<Eigen::Vector3d> first(kinds, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Matrix3d> second(kinds, Eigen::Matrix3d::Zero());
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
+  Index first_element = 0;
   for (const auto& block : mesh.blocks) {
     const int n = nodes_per_element(block.type);
     for (Index e = 0; e < block.size(); ++e) {
+      const size_t k = size_t(materials.index_of(first_element + e));
       const auto nodes = block.element(e);
       Eigen::MatrixXd X(n, 3);
       for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
@@ -27,20 +31,50 @@ MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& materi
         shape_functions(block.type, qp.xi, N, dN);
         const double dV = qp.weight * (X.transpose() * dN).determinant();
         const Eigen::Vector3d x = X.transpose() * N;
-        volume += dV;
-        first += dV * x;
-        second += dV * x * x.transpose();
+        volume[k] += dV;
+        first[k] += dV * x;
+        second[k] += dV * x * x.transpose();
       }
     }
+    first_element += block.size();
   }
   MassProperties out;
-  const double rho = material.density_kg_m3;
-  out.mass_kg = rho * volume;
-  if (volume <= 0) return out;
-  out.centre_of_mass_m = first / volume;
-  // Second moment about the centre of mass, then I = tr(S) 1 - S.
+  bool one_density = true;
+  for (const IsotropicMaterial& m : materials.materials())
+    one_density = one_density && m.density_kg_m3 == materials.materials()[0].density_kg_m3;
+  if (one_density) {
+    // The centre of mass is the centroid of the volume (for a zero density too).
+    double total_volume = volume[0];
+    Eigen::Vector3d total_first = first[0];
+    Eigen::Matrix3d total_second = second[0];
+    for (size_t k = 1; k < kinds; ++k) {
+      total_volume += volume[k];
+      total_first += first[k];
+      total_second += second[k];
+    }
+    const double rho = materials.materials()[0].density_kg_m3;
+    out.mass_kg = rho * total_volume;
+    if (total_volume <= 0) return out;
+    out.centre_of_mass_m = total_first / total_volume;
+    // Second moment about the centre of mass, then I = tr(S) 1 - S.
+    const Eigen::Matrix3d S = rho * (total_second - total_volume * out.centre_of_mass_m *
+                                                        out.centre_of_mass_m.transpose());
+    out.inertia_about_com_kgm2 = S.trace() * Eigen::Matrix3d::Identity() - S;
+    return out;
+  }
+  // Densities differ: the moments of mass are the density-weighted sums.
+  Eigen::Vector3d mass_first = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d mass_second = Eigen::Matrix3d::Zero();
+  for (size_t k = 0; k < kinds; ++k) {
+    const double rho = materials.materials()[k].density_kg_m3;
+    out.mass_kg += rho * volume[k];
+    mass_first += rho * first[k];
+    mass_second += rho * second[k];
+  }
+  if (out.mass_kg <= 0) return out;
+  out.centre_of_mass_m = mass_first / out.mass_kg;
   const Eigen::Matrix3d S =
-      rho * (second - volume * out.centre_of_mass_m * out.centre_of_mass_m.transpose());
+      mass_second - out.mass_kg * out.centre_of_mass_m * out.centre_of_mass_m.transpose();
   out.inertia_about_com_kgm2 = S.trace() * Eigen::Matrix3d::Identity() - S;
   return out;
 }

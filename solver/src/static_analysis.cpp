@@ -14,8 +14,8 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
                                            const StaticSolverOptions& options)
     : model_(model),
       log_(log),
-      dofs_((model.mesh.validate(), model.material.validate(), model.mesh.node_count()),
-            model.supports),
+      materials_((model.mesh.validate(), element_materials(model))),
+      dofs_(model.mesh.node_count(), model.supports),
       solver_(options.direct, &log) {
   const Mesh& mesh = model.mesh;
   log_.detail("  FE model: {} nodes, {} elements, {} DoFs ({} free, {} prescribed)",
@@ -24,7 +24,7 @@ LinearStaticAnalysis::LinearStaticAnalysis(const FeModel& model, const Log& log,
   require(dofs_.free_count() > 0, "FE model has no free DoFs: every node is supported");
   Stopwatch clock;
   check_element_jacobians(mesh);
-  stiffness_ = assemble_stiffness(mesh, model.material, dofs_);
+  stiffness_ = assemble_stiffness(mesh, materials_, dofs_);
   timings_.assembly_seconds = clock.seconds();
   log_.detail("  assembly: {:.2f} s", timings_.assembly_seconds);
 
@@ -107,7 +107,7 @@ void LinearStaticAnalysis::factorize_direct() {
 
 std::vector<DisplacementField> LinearStaticAnalysis::solve(const std::vector<LoadCase>& load_cases) {
   Stopwatch clock;
-  const Eigen::MatrixXd F = assemble_external_forces(model_.mesh, model_.material, load_cases);
+  const Eigen::MatrixXd F = assemble_external_forces(model_.mesh, materials_, load_cases);
   timings_.load_assembly_seconds = clock.seconds();
   return solve_forces(F);
 }
@@ -151,7 +151,7 @@ std::vector<DisplacementField> LinearStaticAnalysis::solve_forces(
 
 Eigen::VectorXd LinearStaticAnalysis::reactions(const DisplacementField& displacement,
                                                 const Eigen::VectorXd& external_force) const {
-  Eigen::VectorXd r = internal_forces(model_.mesh, model_.material, displacement) - external_force;
+  Eigen::VectorXd r = internal_forces(model_.mesh, materials_, displacement) - external_force;
   for (Index d = 0; d < dofs_.dof_count(); ++d)
     if (dofs_.equation(d) >= 0) r[d] = 0.0;
   return r;
@@ -160,7 +160,7 @@ Eigen::VectorXd LinearStaticAnalysis::reactions(const DisplacementField& displac
 Eigen::VectorXd LinearStaticAnalysis::reactions_at(const DisplacementField& displacement,
                                                    const Eigen::VectorXd& external_force,
                                                    const std::vector<Index>& nodes) const {
-  Eigen::VectorXd r = internal_forces_at(model_.mesh, model_.material, displacement, nodes);
+  Eigen::VectorXd r = internal_forces_at(model_.mesh, materials_, displacement, nodes);
   for (size_t k = 0; k < nodes.size(); ++k)
     r.segment<3>(3 * Index(k)) -= external_force.segment<3>(3 * nodes[k]);
   return r;

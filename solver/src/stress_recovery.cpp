@@ -23,11 +23,12 @@ Vector6d strain_at(const Eigen::Matrix<double, NPE, 3>& G, const Eigen::Matrix<d
 
 }  // namespace
 
-GaussPointStress gauss_point_stress(const Mesh& mesh, const IsotropicMaterial& material,
+GaussPointStress gauss_point_stress(const Mesh& mesh, const ElementMaterials& materials,
                                     const DisplacementField& displacement) {
   require(displacement.rows() == mesh.node_count(), "displacement has {} rows, mesh {} nodes",
           displacement.rows(), mesh.node_count());
-  const Matrix6d D = material.elasticity_matrix();
+  std::vector<Matrix6d> D_of;  // by material index
+  for (const IsotropicMaterial& m : materials.materials()) D_of.push_back(m.elasticity_matrix());
   GaussPointStress out;
   out.first_point_of_element.push_back(0);
   for (const auto& block : mesh.blocks)
@@ -45,6 +46,7 @@ GaussPointStress gauss_point_stress(const Mesh& mesh, const IsotropicMaterial& m
       for (Index e = 0; e < block.size(); ++e) {
         const auto nodes = block.element(e);
         const auto X = detail::element_coordinates<NPE>(mesh, nodes);
+        const Matrix6d& D = D_of[size_t(materials.index_of(first_element + e))];
         Eigen::Matrix<double, NPE, 3> U, G;
         for (int a = 0; a < NPE; ++a) U.row(a) = displacement.row(nodes[size_t(a)]);
         Index row = out.first_point_of_element[size_t(first_element + e)];
@@ -60,9 +62,9 @@ GaussPointStress gauss_point_stress(const Mesh& mesh, const IsotropicMaterial& m
   return out;
 }
 
-NodalStress recover_nodal_stress(const Mesh& mesh, const IsotropicMaterial& material,
+NodalStress recover_nodal_stress(const Mesh& mesh, const ElementMaterials& materials,
                                  const DisplacementField& displacement) {
-  const GaussPointStress gp = gauss_point_stress(mesh, material, displacement);
+  const GaussPointStress gp = gauss_point_stress(mesh, materials, displacement);
   const Index n = mesh.node_count();
   StressField sum = StressField::Zero(n, 6);
   Eigen::VectorXd count = Eigen::VectorXd::Zero(n);

@@ -771,7 +771,7 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
       field.max_displacement_m = field.displacement_m.rowwise().norm().maxCoeff(&field.max_displacement_node);
       if (options.recover_stress && !stress_from_patterns) {
         const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.col(f).data(), N, 3);
-        field.von_mises_pa = fem::recover_nodal_stress(mesh, part.supported.material, ue).von_mises_pa;
+        field.von_mises_pa = fem::recover_nodal_stress(mesh, fem::element_materials(part.supported), ue).von_mises_pa;
       }
       PoseSolution& out = poses[size_t(f)];
       if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
@@ -798,12 +798,13 @@ void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
   if (part.rigid) part.Zp += part.rigid->correction(part.Zp);
   part.GtZp = part.G.transpose() * part.Zp;
   if (options.recover_stress) {
+    const fem::ElementMaterials materials = fem::element_materials(part.supported);
     auto stresses = [&](const Eigen::MatrixXd& Z) {
       Eigen::MatrixXd S(6 * N, Z.cols());
       for (Eigen::Index k = 0; k < Z.cols(); ++k) {
         const fem::DisplacementField u = Eigen::Map<const fem::DisplacementField>(Z.col(k).data(), N, 3);
         S.col(k) = Eigen::Map<const Eigen::VectorXd>(
-            fem::recover_nodal_stress(mesh, part.supported.material, u).stress_pa.data(), 6 * N);
+            fem::recover_nodal_stress(mesh, materials, u).stress_pa.data(), 6 * N);
       }
       return S;
     };

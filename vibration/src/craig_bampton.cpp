@@ -256,8 +256,9 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
                                          : std::vector<fem::DisplacementSupport>{});
   out.free_dofs = n;
   Stopwatch phase;
-  const fem::SymmetricUpperMatrix K = fem::assemble_stiffness(mesh, part.material, dofs).free_free;
-  const fem::SymmetricUpperMatrix M = fem::assemble_mass(mesh, part.material, dofs);
+  const fem::ElementMaterials materials = fem::element_materials(part);
+  const fem::SymmetricUpperMatrix K = fem::assemble_stiffness(mesh, materials, dofs).free_free;
+  const fem::SymmetricUpperMatrix M = fem::assemble_mass(mesh, materials, dofs);
   fem::check_mass_positive(M, label);
 
   // Boundary coordinates.
@@ -468,9 +469,9 @@ CraigBamptonModel reduce_craig_bampton(const fem::FeModel& part,
 CraigBamptonModel reduce_craig_bampton(fem::LinearStaticAnalysis& supported,
                                        const std::vector<PartInterface>& interfaces,
                                        const CraigBamptonOptions& options, const Log* log) {
-  fem::FeModel free_part;
-  free_part.mesh = supported.model().mesh;
-  free_part.material = supported.model().material;
+  // The same model without its supports (mesh, materials and all).
+  fem::FeModel free_part = supported.model();
+  free_part.supports.clear();
   return reduce(free_part, interfaces, options, log, &supported);
 }
 

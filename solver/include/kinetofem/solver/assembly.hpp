@@ -9,11 +9,16 @@
 //
 // Elements whose Jacobian determinant is not positive at a Gauss point
 // (inverted or degenerate) are rejected with the element's index.
+//
+// Each element takes its own material (ElementMaterials: D in the stiffness
+// and internal forces, the density in the body loads); a single
+// IsotropicMaterial converts to one for every element.
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "kinetofem/solver/dof_map.hpp"
+#include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/sparse.hpp"
 
@@ -29,22 +34,23 @@ struct AssembledStiffness {
 
 // Throws Error naming the element (global index, block type) if its Jacobian
 // is not positive at a Gauss point.
-AssembledStiffness assemble_stiffness(const Mesh& mesh, const IsotropicMaterial& material,
+AssembledStiffness assemble_stiffness(const Mesh& mesh, const ElementMaterials& materials,
                                       const DofMap& dofs);
 
 // External nodal force vectors of the load cases, one column per case over
-// all DoFs (3 * N, N): nodal forces + consistent surface and body loads.
-Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const IsotropicMaterial& material,
+// all DoFs (3 * N, N): nodal forces + consistent surface and body loads
+// (gravity and the acceleration field times each element's density).
+Eigen::MatrixXd assemble_external_forces(const Mesh& mesh, const ElementMaterials& materials,
                                          const std::vector<LoadCase>& load_cases);
 
 // Internal force K u of a full displacement field, element by element (3 * N).
 // Reactions at supports are (K u - f_ext) on the prescribed DoFs.
-Eigen::VectorXd internal_forces(const Mesh& mesh, const IsotropicMaterial& material,
+Eigen::VectorXd internal_forces(const Mesh& mesh, const ElementMaterials& materials,
                                 const DisplacementField& displacement);
 
 // K u restricted to the given nodes (3 per node, in their order), from the
 // elements touching them only.
-Eigen::VectorXd internal_forces_at(const Mesh& mesh, const IsotropicMaterial& material,
+Eigen::VectorXd internal_forces_at(const Mesh& mesh, const ElementMaterials& materials,
                                    const DisplacementField& displacement,
                                    const std::vector<Index>& nodes);
 

@@ -10,6 +10,10 @@
 //                         per block ("E1", "E2", ... in block order)
 //   *MATERIAL, *ELASTIC   E, nu of the model's material
 //   *SOLID SECTION        one per element block
+//   With per-set materials (FeModel::set_materials) instead: per material k
+//   that holds elements (element_materials.hpp: 0 the model's own, then the
+//   listed sets) an *ELSET "M<k+1>" of its elements, *MATERIAL "MAT<k+1>" and
+//   one *SOLID SECTION; the deck of a one-material model is unchanged.
 //   *BOUNDARY             every prescribed DoF: the zero ones in the model data,
 //                         the nonzero ones with their values in the first step
 //                         (ccx takes only homogeneous ones in the model data);

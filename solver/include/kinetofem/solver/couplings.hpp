@@ -29,6 +29,7 @@
 
 #include <Eigen/Core>
 
+#include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/mesh.hpp"
 
@@ -75,6 +76,7 @@ Eigen::Vector3d add_bearing_pressure(const Mesh& mesh, const BoreGeometry& bore,
 
 // Body force of a rigid body's motion in its own frame (the mesh frame):
 //   b(x) = rho (g - a_O - alpha x x - omega x (omega x x))     [N/m^3]
+// (rho the density of each element, ElementMaterials)
 // for gravity g, acceleration a_O of the frame origin, angular velocity omega
 // and angular acceleration alpha, all expressed in the body frame. b is
 // affine in x, so its consistent nodal forces are a combination of 12 fixed
@@ -82,7 +84,7 @@ Eigen::Vector3d add_bearing_pressure(const Mesh& mesh, const BoreGeometry& bore,
 // output time costs a 12-column combination, not a new integration.
 class RigidBodyMotionLoads {
  public:
-  RigidBodyMotionLoads(const Mesh& mesh, const IsotropicMaterial& material);
+  RigidBodyMotionLoads(const Mesh& mesh, const ElementMaterials& materials);
 
   // Nodal forces (3 N) of the motion state.
   Eigen::VectorXd forces(const Eigen::Vector3d& gravity_m_s2, const Eigen::Vector3d& origin_acceleration_m_s2,

@@ -9,7 +9,9 @@
 // eliminated from the system (the reduced stiffness stays symmetric and the
 // prescribed values move to the right-hand side). Loads of one load case are
 // summed: nodal forces, surface tractions (force per area, any direction) and
-// pressures on face sets, gravity, and a body-force field f(x) in N/m^3.
+// pressures on face sets, gravity, a body-force field f(x) in N/m^3, and a
+// field of force per unit mass a(x) in m/s^2 (d'Alembert loads of a motion;
+// like gravity, times the density of each element).
 #include <array>
 #include <functional>
 #include <string>
@@ -46,6 +48,8 @@ struct SurfacePressure {
 
 // Body force per unit volume (N/m^3) at a point x (m).
 using BodyForceField = std::function<Eigen::Vector3d(const Eigen::Vector3d& x)>;
+// Force per unit mass (m/s^2) at a point x (m): times each element's density.
+using AccelerationField = std::function<Eigen::Vector3d(const Eigen::Vector3d& x)>;
 
 struct LoadCase {
   std::string name = "load";
@@ -54,6 +58,7 @@ struct LoadCase {
   std::vector<SurfacePressure> pressures;
   Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();  // body force rho * g
   BodyForceField body_force;                               // optional, N/m^3
+  AccelerationField acceleration;  // optional, m/s^2: body force rho a(x), rho of each element
 };
 
 // A material for the elements of one element set (a solid of a welded part); elements in no

@@ -1,8 +1,9 @@
 #pragma once
 // Consistent mass matrix of a part's FE model.
 //
-//   M = sum_e int_Ve rho N^T N dV  (x) I_3      [kg]
+//   M = sum_e int_Ve rho_e N^T N dV  (x) I_3      [kg]
 //
+// with rho_e the density of the element's own material (ElementMaterials),
 // for every element type of the library (TET4, TET10, HEX8, HEX20), with the
 // DoF order of the stiffness (DoF 3 * node + c) and restricted like it to the
 // free-free block of a DofMap. The pattern is the stiffness's
@@ -23,7 +24,7 @@
 // A part of zero density gives M = 0; it is assembled (no error here) and the
 // eigen solver rejects it (generalized_eigen.hpp).
 #include "kinetofem/solver/dof_map.hpp"
-#include "kinetofem/solver/material.hpp"
+#include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/mesh.hpp"
 #include "kinetofem/solver/sparse.hpp"
 
@@ -32,7 +33,7 @@ namespace kinetofem::fem {
 // M_ff (kg), upper triangle. Throws Error naming the element (global index,
 // type) whose Jacobian determinant is not positive at a Gauss point, or if
 // the DoF map does not fit the mesh.
-SymmetricUpperMatrix assemble_mass(const Mesh& mesh, const IsotropicMaterial& material,
+SymmetricUpperMatrix assemble_mass(const Mesh& mesh, const ElementMaterials& materials,
                                    const DofMap& dofs);
 
 // Nodal velocity (or displacement) field of a rigid motion v = v_0 + omega x x

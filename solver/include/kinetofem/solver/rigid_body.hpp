@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/mesh.hpp"
 
@@ -14,13 +15,14 @@ namespace kinetofem::fem {
 
 // Rigid-body mass properties of a meshed part: mass (kg), centre of mass
 // (m, mesh frame) and inertia tensor about the centre of mass (kg m^2), by
-// the elements' load Gauss rules (exact for straight-sided elements).
+// the elements' load Gauss rules (exact for straight-sided elements), each
+// element of its own density (ElementMaterials).
 struct MassProperties {
   double mass_kg = 0.0;
   Eigen::Vector3d centre_of_mass_m = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia_about_com_kgm2 = Eigen::Matrix3d::Zero();
 };
-MassProperties mass_properties(const Mesh& mesh, const IsotropicMaterial& material);
+MassProperties mass_properties(const Mesh& mesh, const ElementMaterials& materials);
 
 // The displacement field minus its best-fitting (least-squares, all nodes
 // weighted equally) small rigid-body motion t + theta x x: the deformation

@@ -23,6 +23,7 @@
 #include "kinetofem/solver/amg_solver.hpp"
 #include "kinetofem/solver/assembly.hpp"
 #include "kinetofem/solver/cholmod_solver.hpp"
+#include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 
 namespace kinetofem::fem {
@@ -91,6 +92,8 @@ class LinearStaticAnalysis {
 
   const DofMap& dofs() const { return dofs_; }
   const FeModel& model() const { return model_; }
+  // The material of each element (element_materials(model()), checked once here).
+  const ElementMaterials& materials() const { return materials_; }
   // CHOLMOD's statistics; on the iterative path only the symbolic analysis
   // (predicted factor size) when Auto ran it, else empty.
   const CholmodStatistics& solver_statistics() const { return solver_.statistics(); }
@@ -105,6 +108,7 @@ class LinearStaticAnalysis {
  private:
   const FeModel& model_;
   const Log& log_;
+  ElementMaterials materials_;
   DofMap dofs_;
   AssembledStiffness stiffness_;
   CholmodSolver solver_;

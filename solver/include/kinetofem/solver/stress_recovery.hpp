@@ -1,7 +1,8 @@
 #pragma once
 // Stress recovery from a displacement field.
 //
-// Gauss-point stresses sigma = D B u_e; nodal values by extrapolation from the
+// Gauss-point stresses sigma = D_e B u_e (D_e of the element's own material,
+// ElementMaterials); nodal values by extrapolation from the
 // Gauss points to the corner nodes (least-squares fit of a linear (tets) or
 // trilinear (hexes) field in reference coordinates), mid-edge nodes taking the
 // mean of their two corners, then the unweighted average over the elements
@@ -27,9 +28,9 @@ struct NodalStress {
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> principal_pa;  // N x 3, descending
 };
 
-GaussPointStress gauss_point_stress(const Mesh& mesh, const IsotropicMaterial& material,
+GaussPointStress gauss_point_stress(const Mesh& mesh, const ElementMaterials& materials,
                                     const DisplacementField& displacement);
-NodalStress recover_nodal_stress(const Mesh& mesh, const IsotropicMaterial& material,
+NodalStress recover_nodal_stress(const Mesh& mesh, const ElementMaterials& materials,
                                  const DisplacementField& displacement);
 
 double von_mises(const Vector6d& stress);
