@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -237,6 +238,99 @@ void expect_ccx_agrees(ElementType type, std::array<int, 3> divisions) {
       read_calculix_frd_stresses(dir.path / "job.frd", model.mesh.node_count());
   ASSERT_EQ(stress.size(), cases.size());
   EXPECT_FALSE(stress[0].hasNaN());
+}
+
+// The cantilever as two solids of different materials: x < 0.2 m steel
+// (the model's material), the rest aluminium (element set "solid.b").
+FeModel two_material_cantilever(ElementType type, std::array<int, 3> divisions) {
+  FeModel model = small_cantilever(type, divisions);
+  model.material = IsotropicMaterial{"steel", 210e9, 0.3, 7850.0};
+  Index first = 0;
+  for (const auto& block : model.mesh.blocks) {
+    for (Index e = 0; e < block.size(); ++e) {
+      double x = 0.0;
+      for (int k = 0; k < corner_nodes(block.type); ++k)
+        x += model.mesh.nodes(block.element(e)[size_t(k)], 0) / corner_nodes(block.type);
+      if (x > 0.2) model.mesh.element_sets["solid.b"].push_back(first + e);
+    }
+    first += block.size();
+  }
+  model.set_materials = {{"solid.b", IsotropicMaterial{"aluminium", 70e9, 0.33, 2700.0}}};
+  return model;
+}
+
+// Element ids (1-based) listed under each "*ELSET, ELSET=<name>" of a deck.
+std::map<std::string, std::vector<long long>> deck_element_sets(const std::string& deck) {
+  std::map<std::string, std::vector<long long>> out;
+  std::istringstream in(deck);
+  std::string line;
+  std::vector<long long>* current = nullptr;
+  while (std::getline(in, line)) {
+    if (line.rfind("*ELSET, ELSET=", 0) == 0) {
+      current = &out[line.substr(14)];
+      continue;
+    }
+    if (line.empty() || line[0] == '*') {
+      current = nullptr;
+      continue;
+    }
+    if (!current) continue;
+    std::istringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ','))
+      if (field.find_first_not_of(' ') != std::string::npos) current->push_back(std::stoll(field));
+  }
+  return out;
+}
+
+TEST(CalculixExport, TwoMaterialsGiveTwoSectionsOverTheirElements) {
+  ScratchDir dir;
+  const FeModel model = two_material_cantilever(ElementType::Hex20, {4, 1, 1});
+  write_calculix_deck(model, std::vector<LoadCase>{end_load(0.0)}, dir.path / "two.inp");
+  const std::string deck = read_text(dir.path / "two.inp");
+  for (const char* text : {"*MATERIAL, NAME=MAT1\n*ELASTIC\n2.100000000000e+11, 3.000000000000e-01\n",
+                           "*MATERIAL, NAME=MAT2\n*ELASTIC\n7.000000000000e+10, 3.300000000000e-01\n",
+                           "*SOLID SECTION, ELSET=M1, MATERIAL=MAT1\n", "*SOLID SECTION, ELSET=M2, MATERIAL=MAT2\n"})
+    EXPECT_NE(deck.find(text), std::string::npos) << text;
+  EXPECT_EQ(deck.find("ELSET=E1, MATERIAL"), std::string::npos);  // no section per block
+  // Every element in exactly one section: solid.b's elements in M2, the rest in M1.
+  const auto sets = deck_element_sets(deck);
+  ASSERT_EQ(sets.size(), 2u);
+  std::vector<long long> expected_b;
+  for (Index e : model.mesh.element_sets.at("solid.b")) expected_b.push_back(e + 1);
+  EXPECT_EQ(sets.at("M2"), expected_b);
+  EXPECT_EQ(Index(sets.at("M1").size() + sets.at("M2").size()), model.mesh.element_count());
+
+  // A one-material model's deck has no per-material sets.
+  FeModel one = model;
+  one.set_materials.clear();
+  write_calculix_deck(one, std::vector<LoadCase>{end_load(0.0)}, dir.path / "one.inp");
+  EXPECT_EQ(read_text(dir.path / "one.inp").find("*ELSET"), std::string::npos);
+}
+
+TEST(CalculixExport, CcxSolvesTheSameTwoMaterialProblem) {
+  if (!have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
+  ScratchDir dir;
+  const FeModel model = two_material_cantilever(ElementType::Hex20, {8, 2, 2});
+  const std::vector<LoadCase> cases = {end_load(0.3)};
+  write_calculix_deck(model, cases, dir.path / "job.inp");
+  ASSERT_TRUE(run_ccx(dir.path, "job")) << read_text(dir.path / "job.log");
+  const Log log = Log::quiet();
+  LinearStaticAnalysis analysis(model, log);
+  const DisplacementField ours = analysis.solve(cases).front();
+  const std::vector<DisplacementField> theirs =
+      read_calculix_dat_displacements(dir.path / "job.dat", model.mesh.node_count());
+  ASSERT_EQ(theirs.size(), 1u);
+  ASSERT_FALSE(theirs[0].hasNaN());
+  // The same discrete problem in both programs: 1e-6 of the largest
+  // displacement, the .dat file's 7 printed digits.
+  const double scale = ours.cwiseAbs().maxCoeff();
+  EXPECT_LT((theirs[0] - ours).cwiseAbs().maxCoeff(), 1e-6 * scale);
+  // And not the one-material problem: aluminium makes the tip visibly softer.
+  FeModel steel_only = model;
+  steel_only.set_materials.clear();
+  LinearStaticAnalysis steel_analysis(steel_only, log);
+  EXPECT_GT((steel_analysis.solve(cases).front() - ours).cwiseAbs().maxCoeff(), 0.1 * scale);
 }
 
 TEST(CalculixExport, CcxSolvesTheSameTet10Problem) {
