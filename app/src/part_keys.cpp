@@ -73,11 +73,18 @@ void add_part_keys(std::vector<KeySpec>& s) {
                .doc = "file: a geometry file; lever, arm_with_roller, coupler, rocker: the parametric links of SPEC §1/§2 "
                       "(frames and face sets: docs/meshes.md)"});
   s.push_back({.path = "part[].file", .type = Type::String,
-               .doc = "source = \"file\": .step/.stp, .brep, .geo or .msh (4.1), relative to the case file"});
+               .doc = "source = \"file\": .step/.stp, .brep, .geo or .msh (4.1), relative to the case file; a STEP/BREP "
+                      "of several solids is welded into one part (docs/meshes.md); may be left out when the body's "
+                      "[[solid]] entries give files (the part is their union)"});
+  s.push_back({.path = "part[].weld_tolerance_mm", .type = Type::Number, .unit = "mm", .to_si = kMm,
+               .default_number = meshes::kDefaultWeldToleranceM / kMm, .min = 0, .max = 10,
+               .doc = "solids of a welded part closer than this are joined (welded); a larger gap is an error"});
   s.push_back({.path = "part[].length_unit", .type = Type::String, .allowed = {"mm", "m"},
                .doc = "unit of the file's coordinates: needed for .brep/.geo/.msh; a STEP file carries its own (checked if given)"});
   s.push_back({.path = "part[].offset_mm", .type = Type::Array, .unit = "mm",
-               .doc = "[x, y] of the part's origin in the body frame; default [0, 0]"});
+               .doc = "[x, y] or [x, y, z] of the part's origin in the body frame; z places the part in its own plane "
+                      "along the pin axes (a pin between bores at different z is an elastic member, [[pin]]); "
+                      "default [0, 0, 0]"});
   s.push_back({.path = "part[].angle_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0,
                .doc = "rotation of the part's axes in the body frame (about z, the pin axis)"});
   s.push_back({.path = "part[].mass_properties", .type = Type::String, .default_text = "mesh", .allowed = {"mesh", "case"},
@@ -95,6 +102,27 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "face_set[].name", .type = Type::String, .doc = "name of the face set (used by face keys)", .required = true});
   s.push_back({.path = "face_set[].box_mm", .type = Type::Array, .unit = "mm",
                .doc = "[xmin, ymin, zmin, xmax, ymax, zmax] in the part file's coordinates, in mm", .required = true});
+  s.push_back({.path = "solid", .type = Type::TableArray,
+               .doc = "a solid of a welded part (docs/meshes.md): its name (element set solid.<name>, seams "
+                      "weld.<a>.<b>), its own file or a point inside it, and optionally its own material"});
+  s.push_back({.path = "solid[].body", .type = Type::String, .doc = "the body whose [[part]] this solid belongs to", .required = true});
+  s.push_back({.path = "solid[].name", .type = Type::String,
+               .doc = "the solid's name: letters, digits, '_' and '-'; without file and inside_mm it names a solid of "
+                      "the part file (solid1, solid2, ... by position, or its only solid)",
+               .required = true});
+  s.push_back({.path = "solid[].file", .type = Type::String,
+               .doc = "the solid's own STEP/BREP file (one solid), relative to the case file; a .brep in the part's "
+                      "length_unit"});
+  s.push_back({.path = "solid[].inside_mm", .type = Type::Array, .unit = "mm",
+               .doc = "[x, y, z]: a point inside one solid of the [[part]] file, in the file's coordinates, in mm"});
+  s.push_back({.path = "solid[].youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = 1e6, .min = 1e-3,
+               .max = 1e7, .doc = "the solid's Young's modulus; default the case's [material]",
+               .range_note = "plausible for a solid: from a soft gel to above diamond"});
+  s.push_back({.path = "solid[].poisson_ratio", .type = Type::Number, .min = -1, .max = 0.4999, .min_exclusive = true,
+               .doc = "the solid's Poisson's ratio (below 0.5); default the case's [material]"});
+  s.push_back({.path = "solid[].density_kg_m3", .type = Type::Number, .unit = "kg/m^3", .min = 1, .max = 1e5,
+               .doc = "the solid's density; default the case's [material]", .zero_allowed = true,
+               .range_note = "0 for a massless solid, else plausible for a solid: osmium is 22 590 kg/m^3"});
   // Face keys of the tables that act on parts.
   const std::string loads_doc = "coupling (distributing, RBE3-like: exact resultant) or bearing (cosine pressure, pins only)";
   s.push_back({.path = "joint[].face_i", .type = Type::String, .doc = "face set of body_i's part the joint acts through"});
@@ -120,6 +148,9 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       if (b.name == name) return b;
     std::string names;
     for (const auto& b : model.bodies) names += (names.empty() ? "" : ", ") + b.name;
+  std::set<std::string> bodies_with_solid_files;  // a [[part]] of these may leave out its file
+  for (std::size_t k = 0; k < c.count("solid"); ++k)
+    if (c.has("solid[].file", k)) bodies_with_solid_files.insert(c.text_value("solid[].body", k));
     fail("{} = \"{}\": no body of that name (bodies: {})", c.where(key, k), name, names);
   };
   for (std::size_t k = 0; k < c.count("part"); ++k) {
@@ -143,21 +174,34 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       else spec.arm.*(d.arm_field) = c.number(key, k);
     }
     if (spec.source == pipeline::PartSource::File) {
-      require(c.has("part[].file", k), "{}: source = \"file\" needs 'file'", c.where("part[].body", k));
+      spec.file_options.weld_tolerance_m = c.number("part[].weld_tolerance_mm", k);
+      spec.file_options.case_folder = c.path().parent_path().empty() ? "." : c.path().parent_path();
+      if (c.has("part[].length_unit", k)) spec.file_options.length_unit_m = c.text_value("part[].length_unit", k) == "mm" ? kMm : 1.0;
+      // Without a file the part is the union of its [[solid]] files.
+      const bool union_of_solids = !c.has("part[].file", k) && bodies_with_solid_files.contains(body.name);
+      require(c.has("part[].file", k) || union_of_solids,
+              "{}: source = \"file\" needs 'file' (or [[solid]] entries with files)", c.where("part[].body", k));
+      if (union_of_solids) spec.label = fmt::format("part '{}' (its [[solid]] files)", body.name);
+    }
+    if (spec.source == pipeline::PartSource::File && c.has("part[].file", k)) {
       std::filesystem::path file = c.text_value("part[].file", k);
       if (file.is_relative()) file = c.path().parent_path() / file;
       const std::string problem = input_file_problem(file);
       require(problem.empty(), "{} = \"{}\": {} ({})", c.where("part[].file", k), c.text_value("part[].file", k),
               problem, file.string());
       spec.file = file;
-      spec.file_options.case_folder = c.path().parent_path().empty() ? "." : c.path().parent_path();
-      if (c.has("part[].length_unit", k)) spec.file_options.length_unit_m = c.text_value("part[].length_unit", k) == "mm" ? kMm : 1.0;
       spec.label = fmt::format("part '{}' ({})", body.name, c.text_value("part[].file", k));
-    } else {
+    } else if (spec.source != pipeline::PartSource::File) {
       require(!c.has("part[].file", k), "{}: a \"{}\" part is parametric: no file", c.where("part[].file", k), source);
       spec.label = fmt::format("part '{}' ({})", body.name, source);
     }
-    spec.placement.offset_m = read_vector2(c, "part[].offset_mm", k, kMm);
+    if (c.has("part[].offset_mm", k)) {
+      const std::vector<double> offset = read_numbers(c, "part[].offset_mm", k, kMm);
+      require(offset.size() == 2 || offset.size() == 3,
+              "{} must be [x, y] or [x, y, z] (z: along the pin axes, the part's own plane), got {} numbers",
+              c.where("part[].offset_mm", k), offset.size());
+      spec.placement.offset_m = {offset[0], offset[1], offset.size() == 3 ? offset[2] : 0.0};
+    }
     spec.placement.angle_rad = c.number("part[].angle_deg", k);
     spec.mass_from_mesh = c.text_value("part[].mass_properties", k) == "mesh";
     part_of_body[body.name] = parts.size();
@@ -186,6 +230,44 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     if (!p) {
       require(!c.has(key, k), "{}: body '{}' has no [[part]] to act through", c.where(key, k), body);
       return {};
+  }
+
+  // The solids of welded parts: names, files or points, own materials (the
+  // part file's solids are matched when it is meshed).
+  for (std::size_t k = 0; k < c.count("solid"); ++k) {
+    const std::string body = c.text_value("solid[].body", k);
+    require(part_of_body.contains(body), "{} = \"{}\": that body has no [[part]] for the solid to belong to",
+            c.where("solid[].body", k), body);
+    pipeline::PartSpec& spec = parts[part_of_body[body]];
+    require(spec.source == pipeline::PartSource::File, "{}: solids are for part files; the \"{}\" part is parametric",
+            c.where("solid[].body", k), pipeline::name_of(spec.source));
+    meshes::PartSolid solid;
+    solid.name = c.text_value("solid[].name", k);
+    require(!c.has("solid[].file", k) || !c.has("solid[].inside_mm", k),
+            "{}: give file (the solid's own file) or inside_mm (a point inside a solid of the part file), not both",
+            c.where("solid[].inside_mm", k));
+    if (c.has("solid[].file", k)) {
+      std::filesystem::path file = c.text_value("solid[].file", k);
+      if (file.is_relative()) file = c.path().parent_path() / file;
+      const std::string problem = input_file_problem(file);
+      require(problem.empty(), "{} = \"{}\": {} ({})", c.where("solid[].file", k), c.text_value("solid[].file", k),
+              problem, file.string());
+      solid.file = file;
+    }
+    if (c.has("solid[].inside_mm", k)) {
+      require(!spec.file.empty(), "{}: the part of body '{}' has no file for the point to be in",
+              c.where("solid[].inside_mm", k), body);
+      const std::vector<double> point = read_numbers(c, "solid[].inside_mm", k, kMm);
+      require(point.size() == 3, "{} must be [x, y, z], got {} numbers", c.where("solid[].inside_mm", k), point.size());
+      solid.inside_m = Eigen::Vector3d(point[0], point[1], point[2]);
+    }
+    pipeline::SolidMaterial material{solid.name, {}, {}, {}};
+    if (c.has("solid[].youngs_modulus_mpa", k)) material.youngs_modulus_pa = c.number("solid[].youngs_modulus_mpa", k);
+    if (c.has("solid[].poisson_ratio", k)) material.poisson_ratio = c.number("solid[].poisson_ratio", k);
+    if (c.has("solid[].density_kg_m3", k)) material.density_kg_m3 = c.number("solid[].density_kg_m3", k);
+    if (material.youngs_modulus_pa || material.poisson_ratio || material.density_kg_m3)
+      spec.solid_materials.push_back(material);
+    spec.file_options.solids.push_back(std::move(solid));
     }
     require(c.has(key, k), "{}: {} acts on body '{}', which has a part: give '{}' (a face set of the part)", c.where(key.substr(0, key.find('.')) + ".name", k),
             what, body, key.substr(key.find('.') + 1));

@@ -28,7 +28,7 @@ const char* name_of(PartSource source) {
 void place_mesh(fem::Mesh& mesh, const PartPlacement& placement) {
   if (placement.angle_rad == 0.0 && placement.offset_m.isZero()) return;
   const Eigen::Matrix3d R = Eigen::AngleAxisd(placement.angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::RowVector3d offset(placement.offset_m.x(), placement.offset_m.y(), 0.0);
+  const Eigen::RowVector3d offset = placement.offset_m.transpose();
   for (fem::Index i = 0; i < mesh.node_count(); ++i)
     mesh.nodes.row(i) = mesh.nodes.row(i) * R.transpose() + offset;
 }
@@ -48,6 +48,29 @@ fem::Mesh mesh_of(const PartSpec& spec, const meshes::MeshOptions& options) {
     fail("{}: {}", spec.label, e.what());
   }
   fail("{}: unknown part source", spec.label);
+}
+
+// The case's material with each value a solid gives in its place.
+std::vector<fem::ElementSetMaterial> solid_materials(const PartSpec& spec, const fem::IsotropicMaterial& material,
+                                                     const fem::Mesh& mesh) {
+  std::vector<fem::ElementSetMaterial> out;
+  for (const auto& solid : spec.solid_materials) {
+    const std::string set = meshes::solid_set_name(solid.solid);
+    require(mesh.element_sets.contains(set), "{}: a material for solid '{}', which the part does not have", spec.label,
+            solid.solid);
+    fem::IsotropicMaterial own = material;
+    own.name = fmt::format("{} (solid {})", material.name, solid.solid);
+    own.youngs_modulus_pa = solid.youngs_modulus_pa.value_or(material.youngs_modulus_pa);
+    own.poisson_ratio = solid.poisson_ratio.value_or(material.poisson_ratio);
+    own.density_kg_m3 = solid.density_kg_m3.value_or(material.density_kg_m3);
+    try {
+      own.validate();
+    } catch (const Error& e) {
+      fail("{}: solid '{}': {}", spec.label, solid.solid, e.what());
+    }
+    out.push_back({set, own});
+  }
+  return out;
 }
 
 }  // namespace
@@ -71,6 +94,7 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
     part.model.mesh = mesh_of(spec, options);
     place_mesh(part.model.mesh, spec.placement);
     part.model.material = material;
+    part.model.set_materials = solid_materials(spec, material, part.model.mesh);
     part.mass = fem::mass_properties(part.model.mesh, fem::element_materials(part.model));
     part.meshing_seconds = clock.seconds();
     const fem::Mesh& mesh = part.model.mesh;
