@@ -82,9 +82,7 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "part[].length_unit", .type = Type::String, .allowed = {"mm", "m"},
                .doc = "unit of the file's coordinates: needed for .brep/.geo/.msh; a STEP file carries its own (checked if given)"});
   s.push_back({.path = "part[].offset_mm", .type = Type::Array, .unit = "mm",
-               .doc = "[x, y] or [x, y, z] of the part's origin in the body frame; z places the part in its own plane "
-                      "along the pin axes (a pin between bores at different z is an elastic member, [[pin]]); "
-                      "default [0, 0, 0]"});
+               .doc = "[x, y] of the part's origin in the body frame; default [0, 0]"});
   s.push_back({.path = "part[].angle_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0,
                .doc = "rotation of the part's axes in the body frame (about z, the pin axis)"});
   s.push_back({.path = "part[].mass_properties", .type = Type::String, .default_text = "mesh", .allowed = {"mesh", "case"},
@@ -96,12 +94,6 @@ void add_part_keys(std::vector<KeySpec>& s) {
                  .max = kMaxPartDimensionMm, .min_exclusive = true,
                  .doc = d.doc + fmt::format(" (default {:g} mm)", def / kMm), .range_note = kPartDimensionNote});
   }
-  s.push_back({.path = "face_set", .type = Type::TableArray,
-               .doc = "named faces of a part file that has none (STEP from CAD): the surfaces inside a box"});
-  s.push_back({.path = "face_set[].body", .type = Type::String, .doc = "body whose part file the box selects from", .required = true});
-  s.push_back({.path = "face_set[].name", .type = Type::String, .doc = "name of the face set (used by face keys)", .required = true});
-  s.push_back({.path = "face_set[].box_mm", .type = Type::Array, .unit = "mm",
-               .doc = "[xmin, ymin, zmin, xmax, ymax, zmax] in the part file's coordinates, in mm", .required = true});
   s.push_back({.path = "solid", .type = Type::TableArray,
                .doc = "a solid of a welded part (docs/meshes.md): its name (element set solid.<name>, seams "
                       "weld.<a>.<b>), its own file or a point inside it, and optionally its own material"});
@@ -123,6 +115,12 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "solid[].density_kg_m3", .type = Type::Number, .unit = "kg/m^3", .min = 1, .max = 1e5,
                .doc = "the solid's density; default the case's [material]", .zero_allowed = true,
                .range_note = "0 for a massless solid, else plausible for a solid: osmium is 22 590 kg/m^3"});
+  s.push_back({.path = "face_set", .type = Type::TableArray,
+               .doc = "named faces of a part file that has none (STEP from CAD): the surfaces inside a box"});
+  s.push_back({.path = "face_set[].body", .type = Type::String, .doc = "body whose part file the box selects from", .required = true});
+  s.push_back({.path = "face_set[].name", .type = Type::String, .doc = "name of the face set (used by face keys)", .required = true});
+  s.push_back({.path = "face_set[].box_mm", .type = Type::Array, .unit = "mm",
+               .doc = "[xmin, ymin, zmin, xmax, ymax, zmax] in the part file's coordinates, in mm", .required = true});
   // Face keys of the tables that act on parts.
   const std::string loads_doc = "coupling (distributing, RBE3-like: exact resultant) or bearing (cosine pressure, pins only)";
   s.push_back({.path = "joint[].face_i", .type = Type::String, .doc = "face set of body_i's part the joint acts through"});
@@ -142,15 +140,15 @@ void add_part_keys(std::vector<KeySpec>& s) {
 std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::MultibodyModel& model) {
   std::vector<pipeline::PartSpec> parts;
   std::map<std::string, std::size_t> part_of_body;
+  std::set<std::string> bodies_with_solid_files;  // a [[part]] of these may leave out its file
+  for (std::size_t k = 0; k < c.count("solid"); ++k)
+    if (c.has("solid[].file", k)) bodies_with_solid_files.insert(c.text_value("solid[].body", k));
   auto body_named = [&](const std::string& key, std::size_t k) -> const mech::Body& {
     const std::string name = c.text_value(key, k);
     for (const auto& b : model.bodies)
       if (b.name == name) return b;
     std::string names;
     for (const auto& b : model.bodies) names += (names.empty() ? "" : ", ") + b.name;
-  std::set<std::string> bodies_with_solid_files;  // a [[part]] of these may leave out its file
-  for (std::size_t k = 0; k < c.count("solid"); ++k)
-    if (c.has("solid[].file", k)) bodies_with_solid_files.insert(c.text_value("solid[].body", k));
     fail("{} = \"{}\": no body of that name (bodies: {})", c.where(key, k), name, names);
   };
   for (std::size_t k = 0; k < c.count("part"); ++k) {
@@ -195,13 +193,7 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       require(!c.has("part[].file", k), "{}: a \"{}\" part is parametric: no file", c.where("part[].file", k), source);
       spec.label = fmt::format("part '{}' ({})", body.name, source);
     }
-    if (c.has("part[].offset_mm", k)) {
-      const std::vector<double> offset = read_numbers(c, "part[].offset_mm", k, kMm);
-      require(offset.size() == 2 || offset.size() == 3,
-              "{} must be [x, y] or [x, y, z] (z: along the pin axes, the part's own plane), got {} numbers",
-              c.where("part[].offset_mm", k), offset.size());
-      spec.placement.offset_m = {offset[0], offset[1], offset.size() == 3 ? offset[2] : 0.0};
-    }
+    spec.placement.offset_m = read_vector2(c, "part[].offset_mm", k, kMm);
     spec.placement.angle_rad = c.number("part[].angle_deg", k);
     spec.mass_from_mesh = c.text_value("part[].mass_properties", k) == "mesh";
     part_of_body[body.name] = parts.size();
@@ -217,19 +209,6 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     require(box.size() == 6, "{} must be [xmin, ymin, zmin, xmax, ymax, zmax], got {} numbers", c.where("face_set[].box_mm", k),
             box.size());
     spec.file_options.face_sets.push_back({c.text_value("face_set[].name", k), {box[0], box[1], box[2]}, {box[3], box[4], box[5]}});
-  }
-
-  // Attachments: every table that acts on a body with a part names its face.
-  auto part_for = [&](const std::string& body) -> pipeline::PartSpec* {
-    const auto it = part_of_body.find(body);
-    return it == part_of_body.end() ? nullptr : &parts[it->second];
-  };
-  // Returns the face for body `body` from key `key` of element k; empty if the body has no part.
-  auto face = [&](const std::string& key, std::size_t k, const std::string& body, const std::string& what) -> std::string {
-    pipeline::PartSpec* p = part_for(body);
-    if (!p) {
-      require(!c.has(key, k), "{}: body '{}' has no [[part]] to act through", c.where(key, k), body);
-      return {};
   }
 
   // The solids of welded parts: names, files or points, own materials (the
@@ -268,6 +247,19 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     if (material.youngs_modulus_pa || material.poisson_ratio || material.density_kg_m3)
       spec.solid_materials.push_back(material);
     spec.file_options.solids.push_back(std::move(solid));
+  }
+
+  // Attachments: every table that acts on a body with a part names its face.
+  auto part_for = [&](const std::string& body) -> pipeline::PartSpec* {
+    const auto it = part_of_body.find(body);
+    return it == part_of_body.end() ? nullptr : &parts[it->second];
+  };
+  // Returns the face for body `body` from key `key` of element k; empty if the body has no part.
+  auto face = [&](const std::string& key, std::size_t k, const std::string& body, const std::string& what) -> std::string {
+    pipeline::PartSpec* p = part_for(body);
+    if (!p) {
+      require(!c.has(key, k), "{}: body '{}' has no [[part]] to act through", c.where(key, k), body);
+      return {};
     }
     require(c.has(key, k), "{}: {} acts on body '{}', which has a part: give '{}' (a face set of the part)", c.where(key.substr(0, key.find('.')) + ".name", k),
             what, body, key.substr(key.find('.') + 1));

@@ -28,7 +28,7 @@ const char* name_of(PartSource source) {
 void place_mesh(fem::Mesh& mesh, const PartPlacement& placement) {
   if (placement.angle_rad == 0.0 && placement.offset_m.isZero()) return;
   const Eigen::Matrix3d R = Eigen::AngleAxisd(placement.angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::RowVector3d offset = placement.offset_m.transpose();
+  const Eigen::RowVector3d offset(placement.offset_m.x(), placement.offset_m.y(), 0.0);
   for (fem::Index i = 0; i < mesh.node_count(); ++i)
     mesh.nodes.row(i) = mesh.nodes.row(i) * R.transpose() + offset;
 }
