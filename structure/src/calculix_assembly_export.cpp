@@ -12,6 +12,7 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/solver/calculix_export.hpp"
+#include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
 #include "kinetofem/structure/rigid_motion.hpp"
 
@@ -103,23 +104,6 @@ class Eliminator {
   std::map<Dof, size_t> pivot_row_;
   double largest_dropped_ = 0.0;
 };
-
-// The material of every element of a part: 0 its own, k + 1 that of
-// set_materials[k].
-std::vector<int> material_of_elements(const fem::FeModel& model, const std::string& label) {
-  std::vector<int> index(size_t(model.mesh.element_count()), 0);
-  for (size_t k = 0; k < model.set_materials.size(); ++k) {
-    const std::string& set = model.set_materials[k].element_set;
-    const auto it = model.mesh.element_sets.find(set);
-    require(it != model.mesh.element_sets.end(), "CalculiX deck: {}: no element set '{}' for its material", label,
-            set);
-    for (fem::Index e : it->second) {
-      require(index[size_t(e)] == 0, "CalculiX deck: {}: element {} is in two sets with a material", label, e);
-      index[size_t(e)] = int(k) + 1;
-    }
-  }
-  return index;
-}
 
 void write_terms(std::FILE* out, const Terms& terms, Dof pivot) {
   std::fprintf(out, "*EQUATION\n%zu\n", terms.size());
@@ -359,17 +343,22 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   std::vector<std::string> sections;  // "ELSET, MATERIAL" pairs
   for (size_t p = 0; p < parts.size(); ++p) {
     const fem::FeModel& fe = parts[p].model;
-    const std::vector<int> material = material_of_elements(fe, parts[p].name());
+    fem::ElementMaterials materials = fem::IsotropicMaterial{};
+    try {
+      materials = fem::element_materials(fe);
+    } catch (const Error& e) {
+      fail("CalculiX deck {}: {}: {}", path.string(), parts[p].name(), e.what());
+    }
     long long element_id = deck.parts[p].first_element;
     fem::Index global = 0;
     std::set<int> used;
     for (size_t b = 0; b < fe.mesh.blocks.size(); ++b) {
       const fem::ElementBlock& block = fe.mesh.blocks[b];
       const std::vector<int> order = fem::calculix_node_order(block.type);
-      for (size_t k = 0; k <= fe.set_materials.size(); ++k) {
+      for (size_t k = 0; k < materials.materials().size(); ++k) {
         bool header = false;
         for (fem::Index e = 0; e < block.size(); ++e) {
-          if (material[size_t(global + e)] != int(k)) continue;
+          if (materials.index_of(global + e) != int(k)) continue;
           if (!header) {
             std::fprintf(out, "*ELEMENT, TYPE=%s, ELSET=P%zuB%zuM%zu\n", fem::calculix_element_name(block.type), p + 1,
                          b + 1, k);
@@ -388,9 +377,11 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
       global += block.size();
     }
     for (int k : used) {
-      const fem::IsotropicMaterial& m = k == 0 ? fe.material : fe.set_materials[size_t(k - 1)].material;
-      m.validate();
-      std::fprintf(out, "*MATERIAL, NAME=P%zuM%d\n*ELASTIC\n%.12e, %.12e\n", p + 1, k, m.youngs_modulus_pa,
+      const fem::IsotropicMaterial& m = materials.materials()[size_t(k)];
+      const std::string whose = k == 0 ? std::string("its elements in no listed set")
+                                       : "element set '" + materials.element_set(size_t(k)) + "'";
+      std::fprintf(out, "** %s: material '%s' of %s\n*MATERIAL, NAME=P%zuM%d\n*ELASTIC\n%.12e, %.12e\n",
+                   parts[p].name().c_str(), m.name.c_str(), whose.c_str(), p + 1, k, m.youngs_modulus_pa,
                    m.poisson_ratio);
     }
   }
