@@ -25,7 +25,9 @@
 // Two variants: both links elastic (the arm's half at H aluminium, a solid
 // of its own material) with a rigid drive; the lever elastic,
 // the arm a rigid body (its interfaces tied to its node pair) and the drive
-// a torsional spring (a second SPRING1 beside the chain's).
+// a torsional spring (a second SPRING1 beside the chain's). And the
+// two-link arm in motion (d'Alembert loads) on a column frame part held at
+// its foot (the foundation as *BOUNDARY).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -37,6 +39,8 @@
 #include <unistd.h>
 
 #include "../../unit/structure/structure_fixtures.hpp"
+#include "kinetofem/mechanisms/multibody/kinematics.hpp"
+#include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
@@ -102,9 +106,53 @@ double peak_gauss_von_mises(const Part& part, const fem::DisplacementField& worl
   return peak;
 }
 
+// What ccx's solution of the deck of `pose` must agree with: the tracked
+// point, every part's nodal displacements and its peak von Mises stress over
+// the integration points (1e-5); the nodal peaks printed.
+void expect_agreement(const std::string& what, const ElasticAssembly& assembly, const std::vector<Part>& parts,
+                      const mech::MultibodyModel& model, const mech::Frame& frame, const PoseSolution& pose,
+                      const std::string& point) {
+  ScratchDir dir;
+  AssemblyDeckOptions deck_options;
+  deck_options.print_part_displacements = true;
+  const AssemblyDeck deck =
+      write_calculix_assembly_deck(assembly, parts, model, frame, dir.path / "pose.inp", deck_options);
+  const double ccx_seconds = run_ccx(dir.path, "pose");
+  ASSERT_GE(ccx_seconds, 0.0) << read_text(dir.path / "pose.log");
+  const AssemblyDeckResults ccx = read_calculix_assembly_results(deck, dir.path / "pose");
+
+  const size_t h = interface_of(assembly, "point", point);
+  const Eigen::Vector3d ours = pose.point(point).displacement_m;
+  const Eigen::Vector3d theirs = ccx.interface_motion[h].head<3>();
+  const double du = (theirs - ours).norm() / ours.norm();
+  std::printf("  %s: %lld nodes, %d equations (%lld terms), %d springs, %d held DoFs, largest dropped %.1e; "
+              "ccx %.2f s\n  u_%s kinetofem (%.6e, %.6e, %.6e) m, ccx (%.6e, %.6e, %.6e) m, difference %.2e\n",
+              what.c_str(), deck.node_count, deck.equations, deck.equation_terms, deck.springs, deck.boundaries,
+              deck.largest_dropped, ccx_seconds, point.c_str(), ours.x(), ours.y(), ours.z(), theirs.x(),
+              theirs.y(), theirs.z(), du);
+  EXPECT_LT(du, 1e-5);
+
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const PartField& field = pose.part(parts[p].body());
+    const double nodal_ours = field.von_mises_pa.maxCoeff();
+    const double nodal_theirs = ccx.nodal_von_mises_pa.at(p).maxCoeff();
+    const double gauss_ours = peak_gauss_von_mises(parts[p], field.displacement_m, deck.parts[p].rotation);
+    const double gauss_theirs = ccx.peak_gauss_von_mises_pa.at(p);
+    const double dfield = (ccx.displacement_m[p] - field.displacement_m).cwiseAbs().maxCoeff() /
+                          field.displacement_m.cwiseAbs().maxCoeff();
+    std::printf("  %s: peak von Mises at the integration points %.6e Pa (ccx %.6e Pa, %.2e), at the nodes %.6e Pa "
+                "(ccx %.6e Pa, %.2e); largest nodal displacement difference %.2e of the largest\n",
+                parts[p].body().c_str(), gauss_ours, gauss_theirs, gauss_theirs / gauss_ours - 1, nodal_ours,
+                nodal_theirs, nodal_theirs / nodal_ours - 1, dfield);
+    EXPECT_NEAR(gauss_theirs, gauss_ours, 1e-5 * gauss_ours) << parts[p].body();
+    ASSERT_FALSE(ccx.displacement_m[p].hasNaN()) << parts[p].body();
+    EXPECT_LT(dfield, 1e-5) << parts[p].body();
+  }
+}
+
 // elastic_arm false: the arm is a rigid body (its tracked point and its
 // joint and chain interfaces on the body itself).
-void expect_ccx_agrees(bool elastic_arm, double drive_stiffness) {
+void expect_lever_chain_agrees(bool elastic_arm, double drive_stiffness) {
   if (!have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
   const mech::ManipulatorDefinition def = test::lever_chain_definition();
   mech::MultibodyModel model = mech::make_manipulator_model(def);
@@ -138,50 +186,57 @@ void expect_ccx_agrees(bool elastic_arm, double drive_stiffness) {
   options.points = {{"H", "arm", "H", elastic_arm ? "x0" : ""}};
   ElasticAssembly assembly(parts, model, options);
   const PoseSolution pose = assembly.solve(frame);
-
-  ScratchDir dir;
-  AssemblyDeckOptions deck_options;
-  deck_options.print_part_displacements = true;
-  const AssemblyDeck deck =
-      write_calculix_assembly_deck(assembly, parts, model, frame, dir.path / "pose.inp", deck_options);
-  const double ccx_seconds = run_ccx(dir.path, "pose");
-  ASSERT_GE(ccx_seconds, 0.0) << read_text(dir.path / "pose.log");
-  const AssemblyDeckResults ccx = read_calculix_assembly_results(deck, dir.path / "pose");
-
-  const size_t h = interface_of(assembly, "point", "H");
-  const Eigen::Vector3d ours = pose.point("H").displacement_m;
-  const Eigen::Vector3d theirs = ccx.interface_motion[h].head<3>();
-  const double du = (theirs - ours).norm() / ours.norm();
-  std::printf("  %s arm, k_d = %g N m/rad: %lld nodes, %d equations (%lld terms), %d springs, largest dropped %.1e; "
-              "ccx %.2f s\n  u_H kinetofem (%.6e, %.6e, %.6e) m, ccx (%.6e, %.6e, %.6e) m, difference %.2e\n",
-              elastic_arm ? "elastic" : "rigid", drive_stiffness, deck.node_count, deck.equations,
-              deck.equation_terms, deck.springs, deck.largest_dropped, ccx_seconds, ours.x(), ours.y(), ours.z(),
-              theirs.x(), theirs.y(), theirs.z(), du);
-  EXPECT_LT(du, 1e-5);
-
-  for (size_t p = 0; p < parts.size(); ++p) {
-    const PartField& field = pose.part(parts[p].body());
-    const double nodal_ours = field.von_mises_pa.maxCoeff();
-    const double nodal_theirs = ccx.nodal_von_mises_pa.at(p).maxCoeff();
-    const double gauss_ours = peak_gauss_von_mises(parts[p], field.displacement_m, deck.parts[p].rotation);
-    const double gauss_theirs = ccx.peak_gauss_von_mises_pa.at(p);
-    const double dfield = (ccx.displacement_m[p] - field.displacement_m).cwiseAbs().maxCoeff() /
-                          field.displacement_m.cwiseAbs().maxCoeff();
-    std::printf("  %s: peak von Mises at the integration points %.6e Pa (ccx %.6e Pa, %.2e), at the nodes %.6e Pa "
-                "(ccx %.6e Pa, %.2e)\n",
-                parts[p].body().c_str(), gauss_ours, gauss_theirs, gauss_theirs / gauss_ours - 1, nodal_ours,
-                nodal_theirs, nodal_theirs / nodal_ours - 1);
-    std::printf("  %s: largest nodal displacement difference %.2e of the largest displacement\n",
-                parts[p].body().c_str(), dfield);
-    EXPECT_NEAR(gauss_theirs, gauss_ours, 1e-5 * gauss_ours) << parts[p].body();
-    ASSERT_FALSE(ccx.displacement_m[p].hasNaN()) << parts[p].body();
-    EXPECT_LT(dfield, 1e-5) << parts[p].body();
-  }
+  expect_agreement(fmt::format("{} arm, k_d = {:g} N m/rad", elastic_arm ? "elastic" : "rigid", drive_stiffness),
+                   assembly, parts, model, frame, pose, "H");
 }
 
-TEST(AssemblyCalculix, LeverChainWithElasticPartsAndRigidDriveMatchesCcx) { expect_ccx_agrees(true, kRigid); }
+TEST(AssemblyCalculix, LeverChainWithElasticPartsAndRigidDriveMatchesCcx) { expect_lever_chain_agrees(true, kRigid); }
 
-TEST(AssemblyCalculix, LeverChainWithRigidArmAndCompliantDriveMatchesCcx) { expect_ccx_agrees(false, 2e4); }
+TEST(AssemblyCalculix, LeverChainWithRigidArmAndCompliantDriveMatchesCcx) { expect_lever_chain_agrees(false, 2e4); }
+
+}  // namespace
+}  // namespace kinetofem::structure
+
+namespace kinetofem::structure {
+namespace {
+
+// A column along +y from y = y_foot (x in [-h/2, h/2], z in [-t/2, t/2]),
+// held on its foot y0; its top y1 carries the ground's joints.
+Part column_part(loads::LinkDefinition attachments, double L, double h, double t, std::array<int, 3> cells,
+                 double y_foot) {
+  testing::BoxMeshOptions box;
+  box.type = fem::ElementType::Hex20;
+  box.length_m = {h, L, t};
+  box.divisions = cells;
+  fem::Mesh mesh = testing::box_mesh(box);
+  mesh.nodes.col(0).array() -= 0.5 * h;
+  mesh.nodes.col(1).array() += y_foot;
+  mesh.nodes.col(2).array() -= 0.5 * t;
+  Part part = test::mesh_part("frame", std::move(attachments), std::move(mesh), test::steel());
+  part.held_face = "y0";
+  return part;
+}
+
+// The two-link arm (structure_fixtures.hpp) in motion (d'Alembert loads of
+// its kinematics at t = 0.2 s) on a column frame part held at its foot, its
+// elbow drive a torsional spring: the foundation as *BOUNDARY, the ground's
+// pin and drive on the column's top face.
+TEST(AssemblyCalculix, TwoLinkArmOnAColumnFrameMatchesCcx) {
+  if (!have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
+  const test::TwoLinkArm arm;
+  mech::MultibodyModel model = test::two_link_arm(arm);
+  std::vector<Part> parts = test::two_link_parts(arm);
+  pipeline::apply_mass_properties(model, parts, Log::quiet());
+  const mech::Frame frame = mech::run_kinematics(mech::MultibodySystem(model), {0.0, 0.2, 0.5}).frames[1];
+  parts.push_back(column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
+                              -0.5));
+  AssemblyOptions options;
+  options.drives = {{"d2", 3000.0}};
+  options.points = {{"H", "link2", "tip", "x1"}};
+  ElasticAssembly assembly(parts, model, options);
+  const PoseSolution pose = assembly.solve(frame);
+  expect_agreement("two-link arm on a column", assembly, parts, model, frame, pose, "H");
+}
 
 }  // namespace
 }  // namespace kinetofem::structure
