@@ -171,9 +171,13 @@ void print_summary(const post::ResultsFile& r, const std::vector<post::HotSpot>&
              "z [mm]", "time", "[" + u.label + "]");
   for (size_t i = 0; i < spots.size(); ++i) {
     const auto& s = spots[i];
-    fmt::print("    {:>2}  {:<8} {:>7} {:>9.1f} {:>9.1f} {:>9.1f}  {:<16} {:>10.3f}\n", i + 1, s.body, s.node,
+    // On a welded part: the solid, and the seam when the node lies on one.
+    const std::string place = s.solid.empty() ? std::string()
+                              : s.seam.empty() ? "  solid " + s.solid
+                                               : fmt::format("  solid {}, seam {}", s.solid, s.seam);
+    fmt::print("    {:>2}  {:<8} {:>7} {:>9.1f} {:>9.1f} {:>9.1f}  {:<16} {:>10.3f}{}\n", i + 1, s.body, s.node,
                s.position_m.x() * 1e3, s.position_m.y() * 1e3, s.position_m.z() * 1e3, when(s.time_s),
-               s.value * u.factor);
+               s.value * u.factor, place);
   }
 }
 

@@ -68,7 +68,13 @@ void add_part_keys(std::vector<KeySpec>& s) {
   const meshes::LeverDimensions lever;
   const meshes::ArmDimensions arm;
   s.push_back({.path = "part", .type = Type::TableArray, .doc = "FE parts: the elastic bodies whose stress is computed over the motion"});
-  s.push_back({.path = "part[].body", .type = Type::String, .doc = "the moving body this part belongs to (one part per body)", .required = true});
+  s.push_back({.path = "part[].body", .type = Type::String,
+               .doc = "the body this part belongs to (one part per body): a moving body, or the ground (the frame, "
+                      "with held_face)",
+               .required = true});
+  s.push_back({.path = "part[].held_face", .type = Type::String,
+               .doc = "a part of the ground (the frame: a column, a base plate) only: the face set of its foundation, "
+                      "held fixed (x, y, z); the ground joints and drives then act on the frame's faces"});
   s.push_back({.path = "part[].source", .type = Type::String, .default_text = "file", .allowed = kSources,
                .doc = "file: a geometry file; lever, arm_with_roller, coupler, rocker: the parametric links of SPEC §1/§2 "
                       "(frames and face sets: docs/meshes.md)"});
@@ -153,8 +159,14 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
   };
   for (std::size_t k = 0; k < c.count("part"); ++k) {
     const mech::Body& body = body_named("part[].body", k);
-    require(!body.fixed, "{} = \"{}\": the ground is rigid; a part belongs to a moving body", c.where("part[].body", k),
-            body.name);
+    // A part of the ground is the frame, held on its foundation; a moving
+    // part has no foundation (a 3-2-1 support and its rigid motion hold it).
+    require(!body.fixed || c.has("part[].held_face", k),
+            "{} = \"{}\": a part of the ground (the frame) needs held_face, the face set of its foundation",
+            c.where("part[].body", k), body.name);
+    require(body.fixed || !c.has("part[].held_face", k),
+            "{} = \"{}\": held_face is for a part of the ground (the frame); body '{}' moves", c.where("part[].held_face", k),
+            c.has("part[].held_face", k) ? c.text_value("part[].held_face", k) : std::string(), body.name);
     require(!part_of_body.contains(body.name), "{} = \"{}\": this body already has a part (one part per body)",
             c.where("part[].body", k), body.name);
     pipeline::PartSpec spec;
@@ -204,6 +216,7 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     require(part_of_body.contains(body), "{} = \"{}\": that body has no [[part]]", c.where("face_set[].body", k), body);
     pipeline::PartSpec& spec = parts[part_of_body[body]];
     require(spec.source == pipeline::PartSource::File, "{}: face sets by box are for part files; the \"{}\" part has its own",
+    if (body.fixed) spec.held_face = c.text_value("part[].held_face", k);
             c.where("face_set[].body", k), pipeline::name_of(spec.source));
     const std::vector<double> box = read_numbers(c, "face_set[].box_mm", k, kMm);
     require(box.size() == 6, "{} must be [xmin, ymin, zmin, xmax, ymax, zmax], got {} numbers", c.where("face_set[].box_mm", k),
@@ -309,3 +322,10 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
 }
 
 }  // namespace kinetofem::app
+  // The frame carries the ground joints: without one it would be loaded by
+  // nothing but its weight and add nothing to the mechanism.
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    require(parts[k].held_face.empty() || !parts[k].attachments.joints.empty(),
+            "{} = \"{}\": no joint of the mechanism acts on the ground's part (the frame): the ground joints must "
+            "join the ground body '{}'",
+            c.where("part[].body", k), parts[k].attachments.body, parts[k].attachments.body);

@@ -25,6 +25,18 @@ std::string weld_set_name(const std::string& solid_a, const std::string& solid_b
   return fmt::format("{}{}.{}", kWeldSetPrefix, a, b);
 }
 
+ElementSolids element_solids(const fem::Mesh& mesh) {
+  ElementSolids solids;
+  solids.of_element.assign(std::size_t(mesh.element_count()), -1);
+  const std::string prefix = kSolidSetPrefix;
+  for (const auto& [set, elements] : mesh.element_sets) {  // a std::map: alphabetical
+    if (set.rfind(prefix, 0) != 0) continue;
+    solids.names.push_back(set.substr(prefix.size()));
+    for (fem::Index e : elements) solids.of_element[std::size_t(e)] = int(solids.names.size() - 1);
+  }
+  return solids;
+}
+
 namespace detail {
 
 namespace {
@@ -369,15 +381,7 @@ void load_welded_part(GmshSession& session, const std::string& context, const We
 
 void add_weld_sets(fem::Mesh& mesh) {
   using fem::Index;
-  // Each element's solid (by name), from the "solid.*" element sets.
-  std::vector<std::string> names;
-  std::vector<int> solid_of(std::size_t(mesh.element_count()), -1);
-  const std::string prefix = kSolidSetPrefix;
-  for (const auto& [set, elements] : mesh.element_sets) {
-    if (set.rfind(prefix, 0) != 0) continue;
-    names.push_back(set.substr(prefix.size()));
-    for (Index e : elements) solid_of[std::size_t(e)] = int(names.size() - 1);
-  }
+  const auto [names, solid_of] = element_solids(mesh);
   if (names.size() < 2) return;
 
   // Every element face by its sorted corners; a face met twice, from

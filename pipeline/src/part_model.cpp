@@ -97,6 +97,8 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
     part.model.set_materials = solid_materials(spec, material, part.model.mesh);
     part.mass = fem::mass_properties(part.model.mesh, fem::element_materials(part.model));
     part.meshing_seconds = clock.seconds();
+    part.held_face = spec.held_face;
+    if (!part.held_face.empty()) structure::foundation_support(part);  // the face set exists (else Error)
     const fem::Mesh& mesh = part.model.mesh;
     log.info("  {}: {} nodes, {} elements ({}), {} DoFs, {:.3f} kg; {:.2f} s", spec.label, mesh.node_count(),
              mesh.element_count(), mesh.blocks.empty() ? "-" : fem::name_of(mesh.blocks.front().type),

@@ -66,12 +66,14 @@ void write_hot_spots_csv(const std::filesystem::path& path, const std::vector<Ho
                          const std::string& field, const std::string& units) {
   const DisplayUnit u = display_unit(units);
   CsvFile csv(path);
-  csv.row({"rank", "body", "node", "x [mm]", "y [mm]", "z [mm]", "step", "time [s]", header(field, u.label)});
+  csv.row({"rank", "body", "node", "x [mm]", "y [mm]", "z [mm]", "step", "time [s]", header(field, u.label), "solid",
+           "seam"});
   for (size_t i = 0; i < hot_spots.size(); ++i) {
     const HotSpot& s = hot_spots[i];
     csv.row({std::to_string(i + 1), s.body, std::to_string(s.node), number(s.position_m.x() * 1e3),
              number(s.position_m.y() * 1e3), number(s.position_m.z() * 1e3),
-             s.step < 0 ? "" : std::to_string(s.step), number(s.time_s), number(s.value * u.factor)});
+             s.step < 0 ? "" : std::to_string(s.step), number(s.time_s), number(s.value * u.factor), s.solid,
+             s.seam});
   }
   csv.close();
 }

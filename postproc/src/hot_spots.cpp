@@ -35,7 +35,27 @@ BodyEnvelope start_envelope(const ResultsFile& results, const std::string& body,
   env.body = body;
   env.field = field;
   env.source = source;
-  env.nodes_m = results.read_mesh(body).nodes;
+  const fem::Mesh mesh = results.read_mesh(body);
+  env.nodes_m = mesh.nodes;
+  const std::string solid_prefix = layout::kSolidSetPrefix, seam_prefix = layout::kWeldSetPrefix;
+  std::vector<std::pair<std::string, std::vector<fem::Index>>> solids;
+  std::vector<char> in_set;
+  for (const auto& [name, elements] : mesh.element_sets) {
+    if (name.rfind(solid_prefix, 0) != 0) continue;
+    in_set.assign(std::size_t(mesh.element_count()), 0);
+    for (fem::Index e : elements) in_set[std::size_t(e)] = 1;
+    std::vector<fem::Index> nodes;
+    fem::Index global = 0;
+    for (const auto& block : mesh.blocks)
+      for (fem::Index e = 0; e < block.size(); ++e, ++global)
+        if (in_set[std::size_t(global)])
+          for (fem::Index n : block.element(e)) nodes.push_back(n);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    env.solid_nodes.emplace_back(name.substr(solid_prefix.size()), std::move(nodes));
+  }
+  for (const auto& [name, nodes] : mesh.node_sets)
+    if (name.rfind(seam_prefix, 0) == 0) env.seam_nodes.emplace_back(name, nodes);
   return env;
 }
 
@@ -173,6 +193,13 @@ std::vector<HotSpot> find_hot_spots(const std::vector<BodyEnvelope>& envelopes,
     spot.step = env.max_step[size_t(c.node)];
     spot.time_s = env.time_of(c.node);
     spot.value = c.value;
+    const auto holding = [&](const std::vector<std::pair<std::string, std::vector<fem::Index>>>& sets) {
+      for (const auto& [name, nodes] : sets)
+        if (std::binary_search(nodes.begin(), nodes.end(), c.node)) return name;
+      return std::string();
+    };
+    spot.solid = holding(env.solid_nodes);
+    spot.seam = holding(env.seam_nodes);
     spots.push_back(spot);
     spot_body.push_back(c.body);
   }

@@ -45,7 +45,7 @@ TEST(PostCsv, HotSpotsHeaderAndRowsInMillimetresAndMegapascals) {
   const Table t = read_csv(dir / "hot.csv");
   ASSERT_EQ(t.size(), 4u);
   EXPECT_EQ(t[0], (std::vector<std::string>{"rank", "body", "node", "x [mm]", "y [mm]", "z [mm]", "step",
-                                            "time [s]", "von_mises [MPa]"}));
+                                            "time [s]", "von_mises [MPa]", "solid", "seam"}));
   EXPECT_EQ(t[1][0], "1");
   EXPECT_EQ(t[1][1], "beam");
   EXPECT_EQ(std::stoll(t[1][2]), SyntheticMotion::kBeamPeak);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/meshes/part_file.hpp"
 #include "kinetofem/postproc/hot_spots.hpp"
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/postproc/time_history.hpp"
@@ -138,6 +139,51 @@ TEST(PostTimeHistory, MechanismHistoryAndMagnitude) {
   EXPECT_EQ(display_unit("Pa").label, "MPa");
   EXPECT_DOUBLE_EQ(display_unit("m").factor, 1e3);
   EXPECT_EQ(display_unit("N*m").label, "N*m");
+}
+
+}  // namespace
+}  // namespace kinetofem::post
+
+// A welded part: two TET4 of two solids sharing the face (1, 2, 3), the seam.
+// Hot spots name the solid of their node and the seam when it lies on one.
+namespace kinetofem::post {
+namespace {
+
+TEST(PostHotSpots, NameTheSolidAndTheWeldSeamOfAWeldedPart) {
+  testing::TemporaryDirectory dir;
+  fem::Mesh mesh;
+  mesh.nodes.resize(5, 3);
+  mesh.nodes << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1;
+  fem::ElementBlock tets;
+  tets.type = fem::ElementType::Tet4;
+  tets.connectivity = {0, 1, 2, 3, 4, 3, 2, 1};
+  mesh.blocks.push_back(tets);
+  mesh.element_sets = {{"solid.plate", {0}}, {"solid.hub", {1}}};
+  mesh.node_sets = {{"weld.hub.plate", {1, 2, 3}}};
+  const auto path = dir / "welded.h5";
+  {
+    ResultsWriter writer(path, Provenance{});
+    BodyWriter& w = writer.add_body("arm", mesh);
+    FieldMatrix vm(5, 1);
+    vm << 1e6, 5e6, 2e6, 2e6, 3e6;  // the peak on the seam (node 1), the next in the hub only (node 4)
+    w.write_static("von_mises", "Pa", vm);
+    writer.commit();
+  }
+  const auto spots = find_hot_spots(max_envelopes(ResultsFile::open(path)), {.count = 3, .separation_m = 0.0});
+  ASSERT_EQ(spots.size(), 3u);
+  EXPECT_EQ(spots[0].node, 1);
+  EXPECT_EQ(spots[0].solid, "hub");  // on the seam: the solid first by name
+  EXPECT_EQ(spots[0].seam, "weld.hub.plate");
+  EXPECT_EQ(spots[1].node, 4);
+  EXPECT_EQ(spots[1].solid, "hub");
+  EXPECT_EQ(spots[1].seam, "");
+  EXPECT_EQ(spots[2].solid, "hub");
+}
+
+// The results layout names the solids and seams as the meshes module makes them.
+TEST(PostHotSpots, SolidAndSeamPrefixesAreThoseOfTheMeshes) {
+  EXPECT_STREQ(layout::kSolidSetPrefix, meshes::kSolidSetPrefix);
+  EXPECT_STREQ(layout::kWeldSetPrefix, meshes::kWeldSetPrefix);
 }
 
 }  // namespace

@@ -124,6 +124,15 @@ std::string weld_set_name(const std::string& solid_a, const std::string& solid_b
 inline constexpr const char* kSolidSetPrefix = "solid.";
 inline constexpr const char* kWeldSetPrefix = "weld.";
 
+// The solids of a meshed part: their names in alphabetical order (the element
+// sets "solid.<name>") and each element's solid as an index into them (-1: in
+// none; element order of the blocks). No names: not a welded part.
+struct ElementSolids {
+  std::vector<std::string> names;
+  std::vector<int> of_element;
+};
+ElementSolids element_solids(const fem::Mesh& mesh);
+
 struct PartFileOptions {
   // Metres per file unit: 1e-3 for mm, 1 for m. Required for .geo, .brep
   // and .msh; for STEP/IGES the file's own unit is used and, if this is

@@ -12,7 +12,8 @@
 // itself (no time). The static pose study of a manipulator run is a separate
 // load case (static_von_mises) and is not mixed into the envelope.
 //
-// Hot spots: the N highest envelope values over all bodies, spatially
+// Hot spots: the N highest envelope values over all bodies (each naming the
+// solid and the weld seam of a welded part it lies on), spatially
 // separated — nodes are taken in decreasing value, and a node within
 // `separation_m` of an already listed hot spot of the same body is skipped, so
 // one stress concentration is listed once, not as its N neighbouring nodes.
@@ -44,6 +45,9 @@ struct BodyEnvelope {
   std::vector<double> times_s;     // the body's series times; empty for Source::Static
   Eigen::VectorXd max_value;       // N
   std::vector<fem::Index> max_step;  // N, index into times_s; -1 for Source::Static
+  // A part welded from several solids: the sorted nodes of each solid (of the elements of its set
+  // "solid.<name>") and of each seam (node set "weld.<a>.<b>"), by name; empty for one solid.
+  std::vector<std::pair<std::string, std::vector<fem::Index>>> solid_nodes, seam_nodes;
 
   fem::Index peak_node() const;    // node of the largest value (first on a tie)
   double peak_value() const;
@@ -72,6 +76,10 @@ struct HotSpot {
   fem::Index step = -1;                                  // -1: static field
   double time_s = std::numeric_limits<double>::quiet_NaN();
   double value = 0.0;                                    // field units (Pa)
+  // On a welded part: the solid the node belongs to (the first by name on a seam) and the seam
+  // ("weld.<a>.<b>") it lies on; empty when none.
+  std::string solid;
+  std::string seam;
 };
 
 struct HotSpotOptions {

@@ -130,6 +130,13 @@ inline constexpr const char* kPrincipalStress = "principal_stress";  // Pa, kPri
 // ("static_" + kDisplacement), suffix of a vector field's magnitude (<field> + "_magnitude").
 inline constexpr const char* kStaticPrefix = "static_";
 inline constexpr const char* kMagnitudeSuffix = "_magnitude";
+// A part welded from several solids (docs/meshes.md): its mesh's element sets "solid.<name>" and
+// seam face/node sets "weld.<a>.<b>" (the prefixes of meshes/part_file.hpp, checked equal by the
+// postproc tests), and the element field kSolid: each element's solid, the 0-based index into the
+// body's solid names in alphabetical order (dimensionless; absent for a part of one solid).
+inline constexpr const char* kSolid = "solid";
+inline constexpr const char* kSolidSetPrefix = "solid.";
+inline constexpr const char* kWeldSetPrefix = "weld.";
 // The extreme an envelope holds (attribute of envelopes/<field>).
 inline constexpr const char* kEnvelopeMax = "max";
 
