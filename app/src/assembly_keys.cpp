@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/manipulator_names.hpp"
 #include "kinetofem/mechanisms/multibody/joint_traits.hpp"
 
@@ -109,6 +110,21 @@ void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "assembly_point[].point", .type = Type::String, .default_text = "origin", .doc = "point of the body"});
   s.push_back({.path = "assembly_point[].face", .type = Type::String,
                .doc = "body with a part: the face set whose distributing coupling carries the point"});
+  // The pin of a revolute joint whose bores sit at different z (parts in
+  // their own planes): a Timoshenko beam between the bores (docs/elastic_assembly.md).
+  s.push_back({.path = "pin", .type = Type::TableArray,
+               .doc = "elastic assembly: the pin of a revolute joint whose bores sit at different z (an elastic "
+                      "beam between them); joints not listed get the defaults"});
+  s.push_back({.path = "pin[].joint", .type = Type::String, .doc = "the revolute joint the pin belongs to", .required = true});
+  s.push_back({.path = "pin[].diameter_mm", .type = Type::Number, .unit = "mm", .to_si = units::kMm, .min = 0, .max = 1e4,
+               .min_exclusive = true,
+               .doc = "pin diameter; default: the diameter of the smaller of its bores (measured from the face sets); "
+                      "no larger than a bore it passes through"});
+  s.push_back({.path = "pin[].youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = units::kMpa, .min = 1e-3,
+               .max = 1e7, .doc = "pin material's Young's modulus; default: the case's [material]",
+               .range_note = "plausible for a solid: from a soft gel to above diamond"});
+  s.push_back({.path = "pin[].poisson_ratio", .type = Type::Number, .min = -1, .max = 0.4999, .min_exclusive = true,
+               .doc = "pin material's Poisson's ratio; default: the case's [material]"});
 }
 
 std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& c, const mech::MultibodyModel& model,
@@ -129,8 +145,25 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
     if (c.has("motion_drive[].stiffness_n_m_per_rad", k))
       require(enabled, "{}: set assembly.enabled = true to use it (the drive's stiffness only enters the elastic assembly)",
               c.where("motion_drive[].stiffness_n_m_per_rad", k));
+  // A [[pin]] names a revolute joint of the linkage, once.
+  for (std::size_t k = 0; k < c.count("pin"); ++k) {
+    const std::string name = c.text_value("pin[].joint", k);
+    const auto joint = std::find_if(model.joints.begin(), model.joints.end(), [&](const mech::Joint& j) { return j.name == name; });
+    if (joint == model.joints.end() || joint->type != mech::JointType::Revolute) {
+      std::string names;
+      for (const auto& j : model.joints)
+        if (j.type == mech::JointType::Revolute) names += (names.empty() ? "" : ", ") + j.name;
+      fail("{} = \"{}\": no revolute joint of that name (a pin belongs to a revolute joint; revolute joints: {})",
+           c.where("pin[].joint", k), name, names.empty() ? "none" : names);
+    }
+    for (std::size_t l = 0; l < k; ++l)
+      require(c.text_value("pin[].joint", l) != name, "{} = \"{}\": that joint has a [[pin]] already",
+              c.where("pin[].joint", k), name);
+  }
   if (!enabled) {
     require(c.count("assembly_point") == 0, "{}: [[assembly_point]] needs assembly.enabled = true", c.where("assembly_point[].name", 0));
+    require(c.count("pin") == 0, "{}: [[pin]] needs assembly.enabled = true (a pin is an elastic member of the assembly)",
+            c.where("pin[].joint", 0));
     return std::nullopt;
   }
   require(!bodies_with_parts.empty(),
@@ -192,6 +225,14 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
             c.where("assembly_point[].name", k), p.name, p.body);
     require(on_part || p.face_set.empty(), "{}: body '{}' has no part, so the point needs no face", c.where("assembly_point[].face", k), p.body);
     o.points.push_back(p);
+  }
+  for (std::size_t k = 0; k < c.count("pin"); ++k) {
+    structure::PinOption pin;
+    pin.joint = c.text_value("pin[].joint", k);
+    if (c.has("pin[].diameter_mm", k)) pin.diameter_m = c.number("pin[].diameter_mm", k);
+    if (c.has("pin[].youngs_modulus_mpa", k)) pin.youngs_modulus_pa = c.number("pin[].youngs_modulus_mpa", k);
+    if (c.has("pin[].poisson_ratio", k)) pin.poisson_ratio = c.number("pin[].poisson_ratio", k);
+    o.pins.push_back(pin);
   }
   return o;
 }

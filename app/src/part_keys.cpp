@@ -88,7 +88,9 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "part[].length_unit", .type = Type::String, .allowed = {"mm", "m"},
                .doc = "unit of the file's coordinates: needed for .brep/.geo/.msh; a STEP file carries its own (checked if given)"});
   s.push_back({.path = "part[].offset_mm", .type = Type::Array, .unit = "mm",
-               .doc = "[x, y] of the part's origin in the body frame; default [0, 0]"});
+               .doc = "[x, y] or [x, y, z] of the part's origin in the body frame; z places the part in its own plane "
+                      "along the pin axes (a pin between bores at different z is an elastic member, [[pin]]); "
+                      "default [0, 0, 0]"});
   s.push_back({.path = "part[].angle_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0,
                .doc = "rotation of the part's axes in the body frame (about z, the pin axis)"});
   s.push_back({.path = "part[].mass_properties", .type = Type::String, .default_text = "mesh", .allowed = {"mesh", "case"},
@@ -205,7 +207,13 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       require(!c.has("part[].file", k), "{}: a \"{}\" part is parametric: no file", c.where("part[].file", k), source);
       spec.label = fmt::format("part '{}' ({})", body.name, source);
     }
-    spec.placement.offset_m = read_vector2(c, "part[].offset_mm", k, kMm);
+    if (c.has("part[].offset_mm", k)) {
+      const std::vector<double> offset = read_numbers(c, "part[].offset_mm", k, kMm);
+      require(offset.size() == 2 || offset.size() == 3,
+              "{} must be [x, y] or [x, y, z] (z: along the pin axes, the part's own plane), got {} numbers",
+              c.where("part[].offset_mm", k), offset.size());
+      spec.placement.offset_m = {offset[0], offset[1], offset.size() == 3 ? offset[2] : 0.0};
+    }
     spec.placement.angle_rad = c.number("part[].angle_deg", k);
     spec.mass_from_mesh = c.text_value("part[].mass_properties", k) == "mesh";
     part_of_body[body.name] = parts.size();

@@ -65,6 +65,7 @@ struct AssemblyRecorder {
   std::vector<std::vector<std::string>> point_from_names;
   std::vector<std::string> chain_names, drive_names;
   std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
+  std::vector<post::FieldMatrix> pin_bending, pin_shear, pin_deflection;  // per elastic pin (summary.pins order)
 
   AssemblyRecorder(const std::vector<structure::Part>& parts_, const mech::MultibodyModel& model,
                    post::ResultsWriter& writer_, const AssemblyOptions& options_, size_t output_times,
@@ -111,6 +112,27 @@ struct AssemblyRecorder {
     record_part_fields(pose, k, frame);
     record_points(pose, k, frame);
     record_chains_and_drives(pose, k, frame);
+    record_pins(pose, k, frame);
+  }
+
+  // The elastic pins' section stresses and deflection at output time k, and their peaks.
+  void record_pins(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
+    if (k == 0)
+      for (const auto& p : pose.pins) {
+        summary.pins.push_back({.joint = p.joint, .diameter_m = p.diameter_m, .length_m = p.length_m});
+        for (auto* h : {&pin_bending, &pin_shear, &pin_deflection}) h->push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+      }
+    for (size_t i = 0; i < pose.pins.size() && i < summary.pins.size(); ++i) {
+      const structure::PinLoads& l = pose.pins[i].loads;
+      pin_bending[i](Eigen::Index(k), 0) = l.bending_stress_pa;
+      pin_shear[i](Eigen::Index(k), 0) = l.shear_stress_pa;
+      pin_deflection[i](Eigen::Index(k), 0) = l.deflection_m;
+      AssemblySummary::PinPeak& peak = summary.pins[i];
+      if (l.bending_stress_pa > peak.max_bending_stress_pa)
+        peak.max_bending_stress_pa = l.bending_stress_pa, peak.max_bending_time_s = frame.t;
+      if (l.shear_stress_pa > peak.max_shear_stress_pa) peak.max_shear_stress_pa = l.shear_stress_pa, peak.max_shear_time_s = frame.t;
+      peak.max_deflection_m = std::max(peak.max_deflection_m, l.deflection_m);
+    }
   }
 
   // The parts' fields at output time k (where field_steps asks for them), their envelopes and largest von Mises.
@@ -257,6 +279,12 @@ struct AssemblyRecorder {
       writer.write_history("assembly.drive." + drive_names[d] + ".moment", "N*m", drive_moment[d]);
       writer.write_history("assembly.drive." + drive_names[d] + ".twist", "rad", drive_twist[d]);
     }
+    for (size_t i = 0; i < summary.pins.size(); ++i) {
+      const std::string base = post::layout::kAssemblyPinPrefix + summary.pins[i].joint + ".";
+      writer.write_history(base + post::layout::kPinBendingStress, "Pa", pin_bending[i]);
+      writer.write_history(base + post::layout::kPinShearStress, "Pa", pin_shear[i]);
+      writer.write_history(base + post::layout::kPinDeflection, "m", pin_deflection[i]);
+    }
   }
 };
 
@@ -316,6 +344,12 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
   AssemblySummary summary;
   AssemblyRecorder recorder(parts, model, writer, options, motion.size(), summary);
   solve_motion_in_blocks(assembly, motion, log, recorder);
+  if (!summary.pins.empty())
+    log.info(
+        "  parts in their own planes ({} pin(s) between bores at different z): the per-part stress above uses the "
+        "planar multibody reactions (no out-of-plane moment); the elastic assembly carries the out-of-plane moments "
+        "(its fields {}<body>, its pins' histories {}<joint>.*)",
+        summary.pins.size(), post::layout::kAssemblyBodyPrefix, post::layout::kAssemblyPinPrefix);
   const bool determinate = summary.indeterminacy.in_plane == 0;
   if (determinate && summary.worst_chain_mismatch > 1e-6)
     fail(
@@ -368,6 +402,12 @@ std::string format_assembly_summary(const AssemblySummary& s) {
     out += fmt::format("    {:<12} max von Mises {:.3f} MPa over the motion{}\n", p.body, p.max_von_mises_pa / units::kMpa,
                        s.has_static_study ? fmt::format(", {:.3f} MPa static", p.static_von_mises_pa / units::kMpa)
                                           : std::string());
+  for (const auto& p : s.pins)
+    out += fmt::format("    pin {} (d {:.1f} mm, {:.1f} mm between its bores): peak bending {:.3f} MPa at t = {:.4f} s, "
+                       "shear {:.3f} MPa at t = {:.4f} s, own deflection {:.4f} mm\n",
+                       p.joint, p.diameter_m / kMm, p.length_m / kMm, p.max_bending_stress_pa / units::kMpa,
+                       p.max_bending_time_s, p.max_shear_stress_pa / units::kMpa, p.max_shear_time_s,
+                       p.max_deflection_m / kMm);
   for (const auto& p : s.points) {
     const Eigen::Vector3d& u = p.displacement_at_max_m;
     out += fmt::format("    point {} ({}): max |u| {:.4f} mm at t = {:.4f} s, u = ({:+.4f}, {:+.4f}, {:+.4f}) mm\n", p.name,

@@ -28,7 +28,7 @@ const char* name_of(PartSource source) {
 void place_mesh(fem::Mesh& mesh, const PartPlacement& placement) {
   if (placement.angle_rad == 0.0 && placement.offset_m.isZero()) return;
   const Eigen::Matrix3d R = Eigen::AngleAxisd(placement.angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::RowVector3d offset(placement.offset_m.x(), placement.offset_m.y(), 0.0);
+  const Eigen::RowVector3d offset = placement.offset_m.transpose();
   for (fem::Index i = 0; i < mesh.node_count(); ++i)
     mesh.nodes.row(i) = mesh.nodes.row(i) * R.transpose() + offset;
 }
@@ -106,6 +106,15 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
     parts.push_back(std::move(part));
   }
   for (auto& part : parts) part.attachments.model = &part.model;
+  // Parts in their own planes: the per-part stage is planar, the elastic
+  // assembly is not; the user should know which result carries what.
+  const bool planes_differ = std::any_of(specs.begin(), specs.end(), [&](const PartSpec& spec) {
+    return spec.placement.offset_m.z() != specs.front().placement.offset_m.z();
+  });
+  if (planes_differ)
+    log.info("  parts in their own planes (offset_mm z differs): each part's stress over the motion uses the planar "
+             "multibody reactions; the out-of-plane moments at pins between bores at different z are carried by the "
+             "elastic assembly (assembly.enabled: its fields and its pins' histories, docs/elastic_assembly.md)");
   return parts;
 }
 

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
 #include "kinetofem/mechanisms/multibody/system.hpp"
@@ -71,6 +72,11 @@ const DriveResult& PoseSolution::drive(const std::string& name) const {
     if (d.drive == name) return d;
   fail("elastic assembly: no motion drive '{}'", name);
 }
+const PinResult& PoseSolution::pin(const std::string& joint) const {
+  for (const auto& p : pins)
+    if (p.joint == joint) return p;
+  fail("elastic assembly: no elastic pin at joint '{}'", joint);
+}
 const BodyMotion& PoseSolution::body(const std::string& name) const {
   for (const auto& b : bodies)
     if (b.body == name) return b;
@@ -123,6 +129,14 @@ struct ElasticAssembly::Impl {
     int body_i = -1, body_j = -1, if_i = -1, if_j = -1;
     double ea = 0.0, radius = 0.0, sigma = 1.0;  // chain
     Vector2d hinge = Vector2d::Zero();           // chain: hinge point in the ground's frame
+    int pin = -1;                                // revolute with bores at different z: its elastic pin
+  };
+  // The elastic pin of a revolute joint (structure/pin_member.hpp). A side on
+  // the rigid ground (no interface) is held at the joint point, z = 0.
+  struct PinData {
+    int joint = -1;
+    PinSection section;
+    Vector3d ground_end_i = Vector3d::Zero(), ground_end_j = Vector3d::Zero();  // the ground's frame
   };
   struct DriveData {
     int drive = -1, body_i = -1, body_j = -1, if_i = -1, if_j = -1;
@@ -151,6 +165,7 @@ struct ElasticAssembly::Impl {
   std::vector<std::vector<int>> interfaces_of_body;
   std::vector<JointData> joints;
   std::vector<DriveData> drives;
+  std::vector<PinData> pins;
   std::vector<PointData> points;
   AssemblyStatistics stats;
 
@@ -170,6 +185,14 @@ struct ElasticAssembly::Impl {
   void check_member_options() const;
   // Adds model joint j with its interfaces (a chain: its roller's only).
   void add_joint(size_t j);
+  // A revolute joint whose bores sit at different z gets an elastic pin
+  // (its diameter, material and the check that it fits its bores).
+  void add_pin_if_offset(JointData& jd, const mech::Joint& joint, const std::string& who);
+  // Every PinOption must name a joint that has an elastic pin.
+  void check_pin_options() const;
+  // Diameter of the bore that interface k's face set makes about its
+  // reference point's axis (twice the mean in-plane distance of its nodes).
+  double bore_diameter(int k) const;
   // A chain joint's spring data (EA, roller, hinge on the ground) and the
   // interface of its roller.
   void tie_chain(JointData& jd, const mech::Joint& joint, const std::string& who);
@@ -335,6 +358,15 @@ struct ElasticAssembly::Impl {
     std::vector<double> spring_k;
     std::vector<std::string> spring_name;
     std::vector<ChainPose> chain_pose;  // per joint (chains only)
+    // Elastic pins: their members in the pose, and the load systems they
+    // carry (the rigid tie's rows) for the indeterminacy count.
+    struct PinPose {
+      int pin = -1, if_i = -1, if_j = -1;
+      PinMember member;
+    };
+    std::vector<PinPose> pin_pose;
+    std::vector<Eigen::RowVectorXd> pin_rows;
+    std::vector<bool> pin_row_in_plane;
     double max_compliance = 0.0;        // largest translational compliance of a spring member, m/N
   };
   PoseMembers members_of(const mech::Frame& frame, const Pose& pose) const;
@@ -411,6 +443,15 @@ struct ElasticAssembly::Impl {
   JointLoad held_joint_load(JointLoad jl, const JointData& jd, const Pose& pose, const PoseUnknowns& solved) const;
   // The twist and moment of every drive.
   void add_drive_results(PoseSolution& out, const PoseUnknowns& solved) const;
+  // The end motions (u_i, theta_i, u_j, theta_j) of an elastic pin; a side
+  // on the rigid ground: zero.
+  static Vector12d pin_motion(const PoseMembers::PinPose& pp, const PoseUnknowns& solved) {
+    Vector12d u;
+    u << solved.u_of(pp.if_i), solved.u_of(pp.if_j);
+    return u;
+  }
+  // Every elastic pin's loads, stresses and deflection.
+  void add_pin_results(PoseSolution& out, const PoseMembers& members, const PoseUnknowns& solved) const;
   // The tracked points' motion and, with unit_load_split, their compliance
   // and each part's and spring's share of their displacement.
   void add_point_results(PoseSolution& out, const Pose& pose, const PoseMembers& members,
@@ -464,6 +505,7 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   for (const Part& part : given) add_part(part, factorized.empty() ? nullptr : factorized[parts.size()]);
   check_member_options();
   for (size_t j = 0; j < model.joints.size(); ++j) add_joint(j);
+  check_pin_options();
   for (size_t d = 0; d < model.motion_drives.size(); ++d) add_drive(d);
   for (const AssemblyPoint& tp : options.points) add_point(tp);
   for (const auto& part : parts)
@@ -589,8 +631,93 @@ void ElasticAssembly::Impl::add_joint(size_t j) {
     if (!rigid_ground(jd.body_j))
       jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
                               named_point(jd.body_j, joint.point_j, who), false);
+    if (joint.type == mech::JointType::Revolute) add_pin_if_offset(jd, joint, who);
   }
   joints.push_back(jd);
+}
+
+double ElasticAssembly::Impl::bore_diameter(int k) const {
+  const Interface& iface = interfaces[size_t(k)];
+  const PartData& part = *parts[size_t(iface.part)];
+  const fem::DistributingCoupling& coupling = *part.couplings[size_t(iface.local)];
+  double sum = 0.0;
+  for (const fem::Index n : coupling.nodes())
+    sum += (part.supported.mesh.nodes.row(n).head<2>().transpose() - iface.reference.head<2>()).norm();
+  return 2.0 * sum / double(std::max<size_t>(coupling.nodes().size(), 1));
+}
+
+void ElasticAssembly::Impl::add_pin_if_offset(JointData& jd, const mech::Joint& joint, const std::string& who) {
+  // The rigid ground's side is the joint point in the mechanism's plane.
+  const double zi = jd.if_i >= 0 ? interfaces[size_t(jd.if_i)].reference.z() : 0.0;
+  const double zj = jd.if_j >= 0 ? interfaces[size_t(jd.if_j)].reference.z() : 0.0;
+  const bool offset = std::abs(zj - zi) > options.pin_offset_tolerance * length_scale;
+  const auto option = std::find_if(options.pins.begin(), options.pins.end(),
+                                   [&](const PinOption& o) { return o.joint == joint.name; });
+  if (!offset && option == options.pins.end()) return;
+  PinData pd;
+  pd.joint = jd.joint;
+  std::vector<std::pair<int, double>> bores;  // elastic sides: interface, bore diameter
+  for (const int k : {jd.if_i, jd.if_j})
+    if (k >= 0 && interfaces[size_t(k)].part >= 0) bores.push_back({k, bore_diameter(k)});
+  auto require_fits = [&](double diameter) {
+    for (const auto& [k, bore] : bores)
+      require(diameter <= bore * (1.0 + 1e-6),
+              "elastic assembly: {}: the pin's diameter {:.3f} mm is larger than the bore it passes through on body "
+              "'{}' (face set '{}', {:.3f} mm)",
+              who, diameter / units::kMm, body_name(interfaces[size_t(k)].body), interfaces[size_t(k)].face_set,
+              bore / units::kMm);
+  };
+  if (!offset) {
+    // A pin through bores in one plane (a clevis about its lug, say) bends
+    // nothing the rigid tie leaves out: the joint stays the rigid tie, and a
+    // given diameter only has to fit its bores.
+    require_fits(option->diameter_m);
+    log.info("elastic assembly: {}: its bores sit at the same z (within {:.3g} mm): the pin is the rigid tie, not an "
+             "elastic member; its [[pin]] diameter is only checked against the bores",
+             who, options.pin_offset_tolerance * length_scale / units::kMm);
+    return;
+  }
+  const PartData* joined = bores.empty() ? nullptr : parts[size_t(interfaces[size_t(bores.front().first)].part)].get();
+  if (option != options.pins.end() && option->diameter_m > 0) {
+    pd.section.diameter_m = option->diameter_m;
+  } else {
+    require(!bores.empty(),
+            "elastic assembly: {}: its bores are {:.3f} mm apart in z, so its pin is an elastic member, but neither "
+            "side is a part with a bore to measure: give the pin's diameter ([[pin]] diameter_mm)",
+            who, std::abs(zj - zi) / units::kMm);
+    pd.section.diameter_m = std::min_element(bores.begin(), bores.end(), [](const auto& a, const auto& b) {
+                              return a.second < b.second;
+                            })->second;
+  }
+  const fem::IsotropicMaterial material = joined ? joined->supported.material : fem::IsotropicMaterial{};
+  require(joined || (option != options.pins.end() && option->youngs_modulus_pa),
+          "elastic assembly: {}: its pin is an elastic member between bodies without parts: give its Young's modulus "
+          "([[pin]] youngs_modulus_mpa)",
+          who);
+  pd.section.youngs_modulus_pa =
+      option != options.pins.end() && option->youngs_modulus_pa ? *option->youngs_modulus_pa : material.youngs_modulus_pa;
+  pd.section.poisson_ratio =
+      option != options.pins.end() && option->poisson_ratio ? *option->poisson_ratio : material.poisson_ratio;
+  pd.section.validate(fmt::format("elastic assembly: the pin of {}", who));
+  require_fits(pd.section.diameter_m);
+  const Vector2d point_i = named_point(jd.body_i, joint.point_i, who), point_j = named_point(jd.body_j, joint.point_j, who);
+  pd.ground_end_i = lift(point_i);
+  pd.ground_end_j = lift(point_j);
+  jd.pin = int(pins.size());
+  pins.push_back(pd);
+}
+
+void ElasticAssembly::Impl::check_pin_options() const {
+  for (const PinOption& o : options.pins) {
+    const auto joint = std::find_if(model.joints.begin(), model.joints.end(),
+                                    [&](const mech::Joint& j) { return j.name == o.joint; });
+    require(joint != model.joints.end() && joint->type == mech::JointType::Revolute,
+            "elastic assembly: a pin is given for joint '{}', which is not a revolute joint of the mechanism '{}'",
+            o.joint, model.name);
+    require(o.diameter_m >= 0 && std::isfinite(o.diameter_m),
+            "elastic assembly: the pin of joint '{}': diameter {} m must be positive (0: the smaller bore's)", o.joint,
+            o.diameter_m);
+  }
 }
 
 void ElasticAssembly::Impl::tie_chain(JointData& jd, const mech::Joint& joint, const std::string& who) {
@@ -876,7 +1003,29 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
       Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(6 * M);
       if (jd.if_j >= 0) r(6 * jd.if_j + c) += 1.0;
       if (jd.if_i >= 0) r.segment<6>(6 * jd.if_i) -= T.row(c);
-      add_row(r, c, fmt::format("joint '{}' ({})", joint.name, kComponent[c]));
+      if (jd.pin >= 0) {  // an elastic pin carries the same load systems as the rigid tie, through its stiffness
+        out.pin_rows.push_back(r);
+        out.pin_row_in_plane.push_back(c == 0 || c == 1 || c == 5);
+      } else {
+        add_row(r, c, fmt::format("joint '{}' ({})", joint.name, kComponent[c]));
+      }
+    }
+    if (jd.pin >= 0) {
+      const PinData& pd = pins[size_t(jd.pin)];
+      auto end = [&](int k, int body, const Vector3d& on_ground) {
+        return k >= 0 ? pose.P[size_t(k)] : Vector3d(pose.origin[size_t(body)] + pose.R[size_t(body)] * on_ground);
+      };
+      PoseMembers::PinPose pp{jd.pin, jd.if_i, jd.if_j,
+                              PinMember(end(jd.if_i, jd.body_i, pd.ground_end_i), end(jd.if_j, jd.body_j, pd.ground_end_j),
+                                        pd.section, fmt::format("elastic assembly: the pin of joint '{}'", joint.name))};
+      const Matrix12d& K = pp.member.stiffness();
+      const int at[2] = {jd.if_i, jd.if_j};
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+          if (at[a] >= 0 && at[b] >= 0) S.block<6, 6>(6 * at[a], 6 * at[b]) += K.block<6, 6>(6 * a, 6 * b);
+      for (int c = 0; c < 3; ++c)
+        if (K(6 + c, 6 + c) > 0) max_compliance = std::max(max_compliance, 1.0 / K(6 + c, 6 + c));
+      out.pin_pose.push_back(std::move(pp));
     }
   }
   for (const DriveData& dd : drives) {
@@ -1095,7 +1244,36 @@ void ElasticAssembly::Impl::add_joint_loads(PoseSolution& out, const mech::Frame
       out.joints.push_back(jl);
       continue;
     }
+    if (jd.pin >= 0) {  // what the elastic pin applies at its two ends
+      const PoseMembers::PinPose& pp = members.pin_pose[size_t(jd.pin)];
+      const PinLoads loads = pp.member.loads(pin_motion(pp, solved));
+      jl.point_i_m = pp.member.end_i();
+      jl.point_j_m = pp.member.end_j();
+      jl.force_on_i_n = loads.force_on_i_n;
+      jl.moment_on_i_nm = loads.moment_on_i_nm;
+      jl.force_on_j_n = loads.force_on_j_n;
+      jl.moment_on_j_nm = loads.moment_on_j_nm;
+      out.joints.push_back(jl);
+      continue;
+    }
     out.joints.push_back(held_joint_load(jl, jd, pose, solved));
+  }
+}
+
+void ElasticAssembly::Impl::add_pin_results(PoseSolution& out, const PoseMembers& members,
+                                            const PoseUnknowns& solved) const {
+  for (const PoseMembers::PinPose& pp : members.pin_pose) {
+    const mech::Joint& joint = model.joints[size_t(pins[size_t(pp.pin)].joint)];
+    PinResult pr;
+    pr.joint = joint.name;
+    pr.body_i = joint.body_i;
+    pr.body_j = joint.body_j;
+    pr.end_i_m = pp.member.end_i();
+    pr.end_j_m = pp.member.end_j();
+    pr.diameter_m = pp.member.section().diameter_m;
+    pr.length_m = pp.member.length_m();
+    pr.loads = pp.member.loads(pin_motion(pp, solved));
+    out.pins.push_back(pr);
   }
 }
 
@@ -1166,6 +1344,9 @@ void ElasticAssembly::Impl::split_by_unit_loads(PointResult& pr, int k, const Po
   };
   for (const auto& part : parts) pr.contributions.push_back({"part." + part->body, Vector3d::Zero()});
   for (const auto& name : members.spring_name) pr.contributions.push_back({name, Vector3d::Zero()});
+  const size_t first_pin = pr.contributions.size();
+  for (const auto& pp : members.pin_pose)
+    pr.contributions.push_back({"pin." + model.joints[size_t(pins[size_t(pp.pin)].joint)].name, Vector3d::Zero()});
   for (int c = 0; c < 3; ++c) {
     Eigen::VectorXd unit = Eigen::VectorXd::Zero(n);
     unit(ol + 6 * k + c) = 1.0;  // (b): lambda_k = e_c, the point's load on its body
@@ -1177,6 +1358,15 @@ void ElasticAssembly::Impl::split_by_unit_loads(PointResult& pr, int k, const Po
     for (size_t sm = 0; sm < spring_g.size(); ++sm) {
       const double virtual_force = spring_k[sm] * spring_g[sm].dot(xv.segment(ou, 6 * M));
       pr.contributions[parts.size() + sm].displacement_m(c) = virtual_force * spring_g[sm].dot(x.segment(ou, 6 * M));
+    }
+    // An elastic pin: the work of its virtual end loads on its real end motions.
+    PoseUnknowns virtual_solution;
+    virtual_solution.at = solved.at;
+    virtual_solution.x = xv;
+    for (size_t q = 0; q < members.pin_pose.size(); ++q) {
+      const auto& pp = members.pin_pose[q];
+      pr.contributions[first_pin + q].displacement_m(c) =
+          pin_motion(pp, virtual_solution).dot(pp.member.stiffness() * pin_motion(pp, solved));
     }
   }
 }
@@ -1229,7 +1419,15 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
   add_body_motions(out, solved);
   add_joint_loads(out, frame, pose, members, solved, scales.P);
   add_drive_results(out, solved);
-  out.indeterminacy = indeterminacy_of(pose, members.rows, members.row_in_plane, members.spring_g);
+  add_pin_results(out, members, solved);
+  {
+    // Elastic pins carry the load systems of the rigid tie they replace.
+    std::vector<Eigen::RowVectorXd> rows = members.rows;
+    std::vector<bool> in_plane = members.row_in_plane;
+    rows.insert(rows.end(), members.pin_rows.begin(), members.pin_rows.end());
+    in_plane.insert(in_plane.end(), members.pin_row_in_plane.begin(), members.pin_row_in_plane.end());
+    out.indeterminacy = indeterminacy_of(pose, rows, in_plane, members.spring_g);
+  }
   add_point_results(out, pose, members, solved);
   collect_field_inputs(pose, solved, field_inputs);
   stats.recovery_seconds += clock.seconds();

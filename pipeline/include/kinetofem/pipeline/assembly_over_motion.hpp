@@ -76,6 +76,16 @@ struct AssemblySummary {
     double max_von_mises_pa = 0.0, static_von_mises_pa = 0.0;
   };
   std::vector<PartPeak> parts;
+  // Per elastic pin (a joint whose bores sit at different z): its peaks over
+  // the motion.
+  struct PinPeak {
+    std::string joint;
+    double diameter_m = 0.0, length_m = 0.0;
+    double max_bending_stress_pa = 0.0, max_bending_time_s = 0.0;
+    double max_shear_stress_pa = 0.0, max_shear_time_s = 0.0;
+    double max_deflection_m = 0.0;
+  };
+  std::vector<PinPeak> pins;
   structure::Indeterminacy indeterminacy;  // of the first pose (the same at every regular pose)
   // |assembly chain tension - the dynamics'| / the dynamics', worst over the
   // poses (0 for determinate linkages up to round-off).

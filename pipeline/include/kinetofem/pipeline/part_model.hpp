@@ -7,7 +7,10 @@
 // frames documented there) or a geometry file (.step/.stp, .brep, .geo or a
 // .msh 4.1 mesh; meshes/part_file.hpp) with its length unit. Its placement
 // maps the part's own coordinates into the body frame of the multibody model:
-//     x_body = R_z(angle) x_part + (offset_x, offset_y, 0)           [m]
+//     x_body = R_z(angle) x_part + (offset_x, offset_y, offset_z)    [m]
+// where offset_z places the part in its own plane along the pin axes (a
+// revolute joint between bores at different z is an elastic pin in the
+// elastic assembly, structure/elastic_assembly.hpp).
 // so the stiffness (assembled in the body frame) is the same at every pose.
 //
 // Each part names how the mechanism acts on it (loads::LinkDefinition: the
@@ -16,7 +19,8 @@
 // the part fits the model: every named face set exists and is a surface, the
 // part's size agrees with the distance between its joint points (a wrong
 // length unit shows here), and every revolute or chain joint point lies in
-// its bore (a wrong placement shows here).
+// its bore's axis (the in-plane distance from the face set's centroid: a
+// wrong placement shows here; the bore may sit at any z).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -41,7 +45,7 @@ enum class PartSource { File, Lever, ArmWithRoller, Coupler, Rocker };
 const char* name_of(PartSource source);
 
 struct PartPlacement {
-  Eigen::Vector2d offset_m = Eigen::Vector2d::Zero();  // part origin in the body frame, m
+  Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  // part origin in the body frame (z: along the pin axes), m
   double angle_rad = 0.0;                              // part axes turned about z, rad
 };
 

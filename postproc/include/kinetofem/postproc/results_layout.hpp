@@ -87,6 +87,11 @@ inline constexpr const char* kXdmfGeometry = "xdmf_geometry";
 inline constexpr const char* kAssemblyBodyPrefix = "assembly.";
 inline constexpr const char* kAssemblyPointPrefix = "assembly.point.";      // + <P>.displacement, ...
 inline constexpr const char* kAssemblyMaxDisplacement = "assembly.max_displacement";
+// The elastic pins (joints whose bores sit at different z): "assembly.pin.<joint>." + one of these.
+inline constexpr const char* kAssemblyPinPrefix = "assembly.pin.";
+inline constexpr const char* kPinBendingStress = "bending_stress";  // Pa, 32 M/(pi d^3), the larger end
+inline constexpr const char* kPinShearStress = "shear_stress";      // Pa, 16 V/(3 pi d^2)
+inline constexpr const char* kPinDeflection = "deflection";         // m, the pin's own bending and shear
 
 // The vibration of the manipulator over the motion (pipeline/vibration_over_motion.hpp,
 // docs/results.md): bodies "vibration.static.<b>", "vibration.lowest.<b>" (mode shapes: meshes

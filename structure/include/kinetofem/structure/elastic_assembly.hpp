@@ -22,6 +22,11 @@
 //     translations and the rotations about world x and y (a rigid pin from
 //     one reference point to the other); the rotation about z is free, so the
 //     pin carries no moment about z. To the ground: those five held.
+//     Bores at different z (parts in their own planes: reference points more
+//     than pin_offset_tolerance x the model's characteristic length apart in
+//     z; the rigid ground's side at z = 0): the pin is an elastic member
+//     instead, a Timoshenko beam from one reference point to the other with
+//     its twist released (structure/pin_member.hpp; PinOption), a spring of S.
 //     Fixed joint: all six held. Prismatic joints are not modelled (Error).
 //   * Motion drive on an angle (theta_j - theta_i): holds the relative
 //     rotation about z of its interfaces (the part's DriveAttachment face set)
@@ -47,7 +52,7 @@
 //   (R: the interfaces' rigid-body modes; alpha: the part's rigid motion
 //   relative to its support), equilibrium R^T lambda + resultant(f_loads) = 0.
 //   Rotated into world axes, with the joints' compatibility C u = 0, lambda =
-//   C^T mu - S u (S: chain and drive springs), they form one small dense
+//   C^T mu - S u (S: chain and drive springs, elastic pins), they form one small dense
 //   system in (u, lambda, alpha, mu), solved by full-pivoting LU after
 //   scaling. A rank-deficient system is an Error naming the joint (or drive)
 //   whose rotation nothing holds, or the joints of a statically
@@ -61,6 +66,7 @@
 // SI units: m, rad, N, N m, Pa.
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +77,7 @@
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
 #include "kinetofem/structure/part.hpp"
+#include "kinetofem/structure/pin_member.hpp"
 #include "kinetofem/solver/assembly.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 
@@ -89,6 +96,21 @@ struct ChainMember {
 struct DriveHold {
   std::string drive;                               // motion drive name
   double torsional_stiffness_nm_per_rad = kRigid;  // >= 0; kRigid: a constraint
+};
+
+// The pin of a revolute joint whose bores sit at different z (an elastic
+// member; joints not listed take the defaults). Naming a joint that is not
+// revolute is an Error; one whose bores sit at the same z keeps the rigid
+// tie (nothing bends that the tie leaves out: a note says so) and its
+// diameter is only checked against the bores.
+struct PinOption {
+  std::string joint;
+  // 0: the diameter of the smaller of its bores on elastic parts (twice the
+  // mean distance of the face set's nodes from the joint's axis). Larger
+  // than a bore it passes through: Error.
+  double diameter_m = 0.0;
+  // Absent: the material of a part it joins (the case's).
+  std::optional<double> youngs_modulus_pa, poisson_ratio;
 };
 
 // A point of the assembly whose elastic displacement, split and compliance
@@ -116,6 +138,11 @@ struct AssemblyOptions {
   std::vector<ChainMember> chains;
   std::vector<DriveHold> drives;
   std::vector<AssemblyPoint> points;
+  std::vector<PinOption> pins;
+  // A revolute joint's bores more than this fraction of the model's
+  // characteristic length apart in z get an elastic pin; closer: the rigid
+  // tie (bit-identical to a model whose parts all sit in one plane).
+  double pin_offset_tolerance = 1e-3;
   fem::StaticSolverOptions solver;
   // |resultant of a part's loads - its multibody body's applied minus inertia
   // loads| relative to their size; above: Error. Infinity: no check.
@@ -186,15 +213,27 @@ struct DriveResult {
   double twist_rad = 0.0;       // relative rotation theta_j - theta_i of its interfaces
 };
 
+// An elastic pin in one pose: its ends (world, the bores' reference points),
+// section, and what it carries (PinLoads: end loads on the bodies, shear and
+// bending at each end, sigma_b = 32 M/(pi d^3), tau = 16 V/(3 pi d^2), its
+// own deflection).
+struct PinResult {
+  std::string joint, body_i, body_j;
+  Eigen::Vector3d end_i_m = Eigen::Vector3d::Zero(), end_j_m = Eigen::Vector3d::Zero();
+  double diameter_m = 0.0, length_m = 0.0;
+  PinLoads loads;
+};
+
 // What one element of the structure adds to a tracked point's displacement,
 // by the unit-load method: component c is the virtual work of the unit force
 // e_c at the point (its internal loads in this element) on the element's real
 // deformation. A part: lambda_v^T (F lambda + d) over its interfaces; a
-// chain: N_v N / k; a compliant drive: M_v M / k_d. Rigid bodies, pins and
-// rigid drives do no work. The contributions add up to the displacement
+// chain: N_v N / k; a compliant drive: M_v M / k_d; an elastic pin:
+// u_v^T K_pin u over its two ends. Rigid bodies, rigid pins and rigid drives
+// do no work. The contributions add up to the displacement
 // exactly (Maxwell-Betti; up to round-off).
 struct PointContribution {
-  std::string name;  // "part.<body>", "chain.<chain>", "drive.<drive>"
+  std::string name;  // "part.<body>", "chain.<chain>", "drive.<drive>", "pin.<joint>"
   Eigen::Vector3d displacement_m = Eigen::Vector3d::Zero();  // world axes
 };
 
@@ -207,7 +246,8 @@ struct PointResult {
   // column c = the point's displacement under a unit force e_c at it alone
   // (world axes, m/N; symmetric by Maxwell-Betti).
   Eigen::Matrix3d compliance_m_per_n = Eigen::Matrix3d::Zero();
-  // Every part, chain and compliant drive, in that order (model order).
+  // Every part, chain, compliant drive and elastic pin, in that order (model
+  // order).
   std::vector<PointContribution> contributions;
 };
 
@@ -228,6 +268,7 @@ struct PoseSolution {
   std::vector<JointLoad> joints;   // model joint order
   std::vector<ChainResult> chains;
   std::vector<DriveResult> drives;  // motion drives, model order
+  std::vector<PinResult> pins;      // elastic pins, model joint order
   std::vector<PointResult> points;  // options.points order
   int unknowns = 0, rank = 0;
   double relative_residual = 0.0;   // of the dense system (scaled)
@@ -241,6 +282,7 @@ struct PoseSolution {
   const PointResult& point(const std::string& name) const;
   const ChainResult& chain(const std::string& name) const;
   const DriveResult& drive(const std::string& name) const;
+  const PinResult& pin(const std::string& joint) const;
   const BodyMotion& body(const std::string& name) const;
 };
 
@@ -257,7 +299,7 @@ struct InterfaceInfo {
 // what the modes of the assembly need (vibration/assembly_vibration.hpp):
 // u (6M) the interfaces' motions in world axes (translation of the reference
 // point, m; rotation, rad); the joints and rigid drives hold C u = 0; the
-// chains and compliant drives store the energy u^T S u / 2.
+// chains, compliant drives and elastic pins store the energy u^T S u / 2.
 struct InterfaceStructure {
   std::vector<Eigen::Matrix3d> body_rotation;   // per model body: body axes -> world
   std::vector<Eigen::Vector3d> interface_arm_m;  // per interface: reference point - its body's origin, world axes
@@ -286,7 +328,8 @@ class ElasticAssembly {
   // body, a part on the ground, two parts of one body, a joint or motion
   // drive acting on a part that names no face set for it, a prismatic joint,
   // a chain without its EA or hinged off the ground, a displacement drive,
-  // an option naming an unknown chain, drive, body or point.
+  // an option naming an unknown chain, drive, body or point, a pin option
+  // naming no revolute joint, a pin wider than a bore it passes through.
   // Every part is set up here. `factorized`: empty, or per part (in order)
   // a factorization of the part with its 3-2-1 support, lent by the caller
   // (nullptr: made and owned here); a lent one must be factorized and

@@ -76,6 +76,8 @@ class PinMember {
   // The same in the beam's own axes (x' along the pin; the textbook matrix).
   static Matrix12d local_stiffness(double length_m, const PinSection& section);
   double length_m() const { return length_; }
+  const Eigen::Vector3d& end_i() const { return end_i_; }
+  const Eigen::Vector3d& end_j() const { return end_j_; }
   const Eigen::Vector3d& axis() const { return axis_; }  // unit, end i -> end j
   const PinSection& section() const { return section_; }
 
