@@ -216,6 +216,7 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     }
     spec.placement.angle_rad = c.number("part[].angle_deg", k);
     spec.mass_from_mesh = c.text_value("part[].mass_properties", k) == "mesh";
+    if (body.fixed) spec.held_face = c.text_value("part[].held_face", k);
     part_of_body[body.name] = parts.size();
     parts.push_back(std::move(spec));
   }
@@ -224,7 +225,6 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     require(part_of_body.contains(body), "{} = \"{}\": that body has no [[part]]", c.where("face_set[].body", k), body);
     pipeline::PartSpec& spec = parts[part_of_body[body]];
     require(spec.source == pipeline::PartSource::File, "{}: face sets by box are for part files; the \"{}\" part has its own",
-    if (body.fixed) spec.held_face = c.text_value("part[].held_face", k);
             c.where("face_set[].body", k), pipeline::name_of(spec.source));
     const std::vector<double> box = read_numbers(c, "face_set[].box_mm", k, kMm);
     require(box.size() == 6, "{} must be [xmin, ymin, zmin, xmax, ymax, zmax], got {} numbers", c.where("face_set[].box_mm", k),
@@ -326,10 +326,6 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     const std::string f = face("point_force[].face", k, pf.body, fmt::format("point force '{}'", pf.name));
     if (!f.empty()) part_for(pf.body)->attachments.point_forces.push_back({pf.name, f});
   }
-  return parts;
-}
-
-}  // namespace kinetofem::app
   // The frame carries the ground joints: without one it would be loaded by
   // nothing but its weight and add nothing to the mechanism.
   for (std::size_t k = 0; k < parts.size(); ++k)
@@ -337,3 +333,7 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
             "{} = \"{}\": no joint of the mechanism acts on the ground's part (the frame): the ground joints must "
             "join the ground body '{}'",
             c.where("part[].body", k), parts[k].attachments.body, parts[k].attachments.body);
+  return parts;
+}
+
+}  // namespace kinetofem::app

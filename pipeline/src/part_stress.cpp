@@ -1,5 +1,7 @@
 #include "kinetofem/pipeline/part_stress.hpp"
 
+#include <limits>
+
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/meshes/part_file.hpp"
@@ -9,8 +11,14 @@ namespace kinetofem::pipeline {
 
 namespace {
 
-fem::FeModel with_three_two_one_support(const fem::FeModel& model) {
-  fem::FeModel supported = model;
+// A moving part: its 3-2-1 support; the frame (a part of the ground): its
+// foundation.
+fem::FeModel with_support(const Part& part) {
+  fem::FeModel supported = part.model;
+  if (!part.held_face.empty()) {
+    supported.supports = structure::foundation_support(part);
+    return supported;
+  }
   std::vector<fem::Index> all(size_t(supported.mesh.node_count()));
   for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
   supported.supports = fem::three_two_one_support(supported.mesh, all);
@@ -33,7 +41,7 @@ void write_load_patterns(post::BodyWriter& body, loads::LinkLoadPatterns& patter
 }  // namespace
 
 SupportedPart::SupportedPart(const Part& part, const fem::StaticSolverOptions& solver, const Log& log)
-    : model_(with_three_two_one_support(part.model)) {
+    : model_(with_support(part)) {
   log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", part.body());
   analysis_ = std::make_unique<fem::LinearStaticAnalysis>(model_, log, solver);
 }
@@ -52,6 +60,11 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
 
   loads::LinkDefinition definition = part.attachments;
   definition.model = &supported;
+  // The frame is held on its foundation, which takes the resultant of its
+  // loads: no equilibrium to check, its support reactions are real (no
+  // inertia relief: the ground does not move).
+  const bool held = !part.held_face.empty();
+  definition.held_on_foundation = held;
   const loads::LinkLoads link_loads(definition, model);
 
   // The static pose is solved in the same blocks, after the motion, and kept
@@ -63,6 +76,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   }
   loads::LinkStressOptions stress_options = options;
   stress_options.envelope_steps = motion.size();
+  if (held) stress_options.reaction_tolerance = std::numeric_limits<double>::infinity();
   // Fields are written at the output times asked for (all by default) and
   // always for the static study; the envelope covers every output time.
   require(options.callback_steps.empty() || options.callback_steps.size() == motion.size(),
@@ -146,10 +160,16 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
   log.detail("  {}: {} right-hand sides for {} output times{}", ps.body, ps.right_hand_sides, frames.size(),
            ps.superposed ? " (unit-load superposition)" : " (step by step)");
-  log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
-           "loads in equilibrium to {:.1e}, support reactions {:.1e}; out-of-plane moment on the pins up to {:.3g} N m",
-           ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0], at[1],
-           at[2], env.worst_equilibrium_residual, env.worst_support_reaction, ps.max_out_of_plane_moment_nm);
+  if (held)
+    log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
+             "the frame, held on its foundation '{}' (which takes the resultant of its loads)",
+             ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0],
+             at[1], at[2], part.held_face);
+  else
+    log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
+             "loads in equilibrium to {:.1e}, support reactions {:.1e}; out-of-plane moment on the pins up to {:.3g} N m",
+             ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0],
+             at[1], at[2], env.worst_equilibrium_residual, env.worst_support_reaction, ps.max_out_of_plane_moment_nm);
   return ps;
 }
 

@@ -191,6 +191,13 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     pr.body = part.body();
     pr.label = part.label.empty() ? fmt::format("part '{}'", pr.body) : part.label;
     pr.body_index = body_index(pr.body);
+    // The reduction below counts on the rigid-body modes of a free part and
+    // the rigid motion of its body; a frame held on its foundation has
+    // neither, and its fixed nodes are not yet carried into the reduction.
+    require(!model.bodies[size_t(pr.body_index)].fixed,
+            "vibration: {} is a part of the ground (a frame held on its foundation), which the assembly's modes do "
+            "not model yet: set vibration.enabled = false, or drop the frame part",
+            pr.label);
     pr.mesh = &assembly.supported_analysis(pr.body).model().mesh;
     pr.loads = &assembly.part_loads(pr.body);
     const MatrixXd& G = assembly.interface_columns(pr.body);

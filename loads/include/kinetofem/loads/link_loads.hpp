@@ -97,6 +97,12 @@ struct LinkDefinition {
   std::vector<DriveAttachment> drives;
   std::vector<SpringAttachment> springs;
   std::vector<PointForceAttachment> point_forces;
+  // The link is a part of the ground (a frame) held on its foundation: its
+  // loads (the ground sides of the joints, drives and chain, its weight) are
+  // not self-equilibrated, the foundation takes their resultant, so
+  // loads_at neither checks their equilibrium nor gives the out-of-plane
+  // components to the pins.
+  bool held_on_foundation = false;
 };
 
 // Mass, centre of mass and inertia (about z) of a mech::Body from an FE

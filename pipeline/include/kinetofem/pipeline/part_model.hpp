@@ -75,13 +75,13 @@ struct PartSpec {
   // (LinkDefinition::model is set by build_part_models).
   loads::LinkDefinition attachments;
   std::string label;  // for messages: "part 'crank' (parts/crank.step)"
+  // A part of the ground (the frame): the face set of its foundation
+  // (structure::Part::held_face); empty for a moving body's part.
+  std::string held_face;
 };
 
 // A built part (structure/part.hpp): the libraries beneath the pipeline
 // (structure/, vibration/) take it; its spec stays here.
-  // A part of the ground (the frame): the face set of its foundation
-  // (structure::Part::held_face); empty for a moving body's part.
-  std::string held_face;
 using Part = structure::Part;
 
 // Meshes every part (Gmsh, through the mesh cache when options.cache_dir is

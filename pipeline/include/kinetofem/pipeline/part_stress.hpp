@@ -10,7 +10,10 @@
 //   static  static_displacement, static_von_mises, static_stress (Voigt)
 //   envelope von_mises (max), displacement_magnitude (max), with their step
 // The part is held by a statically determinate 3-2-1 support whose reactions
-// are checked to vanish (the loads are self-equilibrated).
+// are checked to vanish (the loads are self-equilibrated). The frame (a part
+// of the ground, Part::held_face) is held on its foundation instead, which
+// takes the resultant of its loads (the ground sides of the joints, drives
+// and chain, and its weight; no inertia: the ground does not move).
 #include <memory>
 #include <optional>
 #include <string>
@@ -48,7 +51,8 @@ struct PartSummary {
 };
 
 // A part's stiffness with its statically determinate 3-2-1 support
-// (fem::three_two_one_support over all nodes), assembled and factorized once
+// (fem::three_two_one_support over all nodes; the frame: its foundation,
+// structure::foundation_support), assembled and factorized once
 // for the whole motion: the per-part stress stage below and the elastic
 // assembly (structure/) share it, so a part is factorized once for both.
 // Neither copied nor moved (the analysis refers to the model).
