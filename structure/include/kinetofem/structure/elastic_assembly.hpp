@@ -9,7 +9,13 @@
 //
 // Model
 //   * Bodies with a Part are elastic (mesh in the body frame), the
-//     others rigid; the ground is fixed.
+//     others rigid; the ground is fixed. A Part of the ground (the frame,
+//     Part::held_face) is elastic and held on that face set, its
+//     foundation: its interfaces (the ground joints' bores, the drives'
+//     ground sides, a chain hinge on one of its faces) move by G^T u of the
+//     held model, with no rigid motion and no equilibrium rows (the
+//     foundation takes the resultant), and its loads (its weight) are not
+//     checked against a multibody body (the ground has none).
 //   * Interfaces. Each end of a joint on a body, each end of a motion drive
 //     and each tracked point is an interface with 6 components (translation
 //     of a reference point and rotation; force and moment). On an elastic
@@ -325,7 +331,9 @@ struct AssemblyStatistics {
 class ElasticAssembly {
  public:
   // Throws Error naming the part, joint or drive for a body without a model
-  // body, a part on the ground, two parts of one body, a joint or motion
+  // body, a frame part without held_face or with one its mesh lacks,
+  // held_face on a moving body's part, a frame part no joint, chain or
+  // drive acts on, two parts of one body, a joint or motion
   // drive acting on a part that names no face set for it, a prismatic joint,
   // a chain without its EA or hinged off the ground, a displacement drive,
   // an option naming an unknown chain, drive, body or point, a pin option
