@@ -7,6 +7,11 @@
 // trilinear (hexes) field in reference coordinates), mid-edge nodes taking the
 // mean of their two corners, then the unweighted average over the elements
 // sharing a node. Voigt order (xx, yy, zz, xy, yz, zx), Pa.
+//
+// At a node shared by elements of two materials (the seam of two solids of a
+// welded part) the average mixes both sides, although the stress components
+// along the seam jump across it; the Gauss-point stresses are each element's
+// own.
 #include <Eigen/Core>
 
 #include "kinetofem/solver/assembly.hpp"
