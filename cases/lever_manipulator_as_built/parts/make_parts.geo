@@ -26,6 +26,14 @@ Return
 a = 500; c = 350; h = 100; r = 75; b0 = a*c/(c + r);
 xB0 = r; yB0 = a - b0;                      // B0 = (75, 88.235) mm, rocker BB0 = b0 = 411.765 mm
 
+// The dimensions the sensitivity band varies (cases/sensitivity/as_built_band), with the
+// values of this case; e.g. gmsh -0 make_parts.geo -setnumber rocker_plate_t 20
+// -setstring prefix "$PWD/rocker20_" writes rocker20_rocker.step and so on (an absolute
+// prefix: Gmsh saves relative names beside this file).
+DefineConstant[ lever_plate_t = 16 ];       // lever plate thickness (z)
+DefineConstant[ rocker_plate_t = 12 ];      // rocker plate thickness (z)
+DefineConstant[ prefix = "" ];              // prefix of the written files' names
+
 // ---------------------------------------------------------------------------------------
 // Frame (the ground's part), world coordinates: A0 at the origin.
 foot_y = -500;                              // foundation 500 mm below A0
@@ -44,7 +52,7 @@ post_hole = newv; Cylinder(post_hole) = {xB0, yB0, 195, 0, 0, 30, 25/2};  // the
 post() = BooleanDifference{ Volume{post_bar}; Delete; }{ Volume{post_hole}; Delete; };
 hx = xB0; hy = yB0; hz0 = 215; hz1 = 250; hD = 60; hd = 25; Call Hub;
 hub_B0() = hub();
-Save "frame.step";
+Save StrCat(prefix, "frame.step");
 
 // ---------------------------------------------------------------------------------------
 // Lever 1: A0 at the origin, A = (0, a); plate mid-plane z = 0 (placed at z = 175).
@@ -53,11 +61,11 @@ hx = 0; hy = 0; hz0 = -25; hz1 = 25; hD = 80; hd = 40; Call Hub;
 hub_A0() = hub();
 hx = 0; hy = a; hz0 = -20; hz1 = 20; hD = 70; hd = 30; Call Hub;
 hub_A() = hub();
-plate_box = newv; Box(plate_box) = {-30, 0, -8, 60, a, 16};
+plate_box = newv; Box(plate_box) = {-30, 0, -lever_plate_t/2, 60, a, lever_plate_t};
 cut_0 = newv; Cylinder(cut_0) = {0, 0, -100, 0, 0, 200, 80/2};
 cut_1 = newv; Cylinder(cut_1) = {0, a, -100, 0, 0, 200, 70/2};
 plate() = BooleanDifference{ Volume{plate_box}; Delete; }{ Volume{cut_0, cut_1}; Delete; };
-Save "lever.step";
+Save StrCat(prefix, "lever.step");
 
 // ---------------------------------------------------------------------------------------
 // Coupler 2 (the arm): A at the origin, B = (r, 0), C = (-c, 0), H = (-c, h); mid-plane
@@ -75,7 +83,7 @@ web_box = newv; Box(web_box) = {-c - 40, -30, -6, c + 40, 60, 12};
 cut_0 = newv; Cylinder(cut_0) = {0, 0, -100, 0, 0, 200, 35};
 web() = BooleanDifference{ Volume{web_box}; Delete; }{ Volume{cut_0}; Delete; };
 pad = newv; Box(pad) = {-c - 40, 30, -40, 80, 15, 80};
-Save "coupler.step";
+Save StrCat(prefix, "coupler.step");
 
 // ---------------------------------------------------------------------------------------
 // Rocker 3: B0 at the origin, B = (0, b0); plate mid-plane z = 0 (placed at z = 275).
@@ -84,11 +92,11 @@ hx = 0; hy = 0; hz0 = -20; hz1 = 20; hD = 60; hd = 25; Call Hub;
 hub_B0() = hub();
 hx = 0; hy = b0; hz0 = -20; hz1 = 20; hD = 60; hd = 25; Call Hub;
 hub_B() = hub();
-plate_box = newv; Box(plate_box) = {-25, 0, -6, 50, b0, 12};
+plate_box = newv; Box(plate_box) = {-25, 0, -rocker_plate_t/2, 50, b0, rocker_plate_t};
 cut_0 = newv; Cylinder(cut_0) = {0, 0, -100, 0, 0, 200, 30};
 cut_1 = newv; Cylinder(cut_1) = {0, b0, -100, 0, 0, 200, 30};
 plate() = BooleanDifference{ Volume{plate_box}; Delete; }{ Volume{cut_0, cut_1}; Delete; };
-Save "rocker.step";
+Save StrCat(prefix, "rocker.step");
 
 // ---------------------------------------------------------------------------------------
 // Gripper: H at the origin (the coupler's (-c, h)); mid-plane z = 0 (placed at z = 225, the
@@ -97,7 +105,7 @@ Recursive Delete { Volume{:}; }
 carrier = newv; Box(carrier) = {-60, -55, -40, 120, 15, 80};
 rotary = newv; Cylinder(rotary) = {0, -40, 0, 0, 80, 0, 50};
 grip = newv; Box(grip) = {-60, 40, -40, 120, 60, 80};
-Save "gripper.step";
+Save StrCat(prefix, "gripper.step");
 
 // Stop here: gmsh -0 would otherwise also write untitled.geo_unrolled.
 Exit;
