@@ -196,8 +196,9 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
         for (fem::Index n : s.nodes)
           for (int c = 0; c < 3; ++c) fixed.insert(dof_of(dp.first_node + n, c));
     const Eigen::VectorXd f = assembly.part_loads(part.body()).loads_at(frame).forces;
-    require(f.size() == 3 * dp.nodes, "CalculiX deck {}: {} has {} load entries for {} nodes", path.string(),
-            part.name(), f.size(), dp.nodes);
+    require(f.size() == 3 * dp.nodes,
+            "CalculiX deck {}: {} is not the part the assembly was built with ({} nodes, its loads {})", path.string(),
+            part.name(), dp.nodes, f.size() / 3);
     for (fem::Index n = 0; n < dp.nodes; ++n) {
       const Vector3d fw = dp.rotation * f.segment<3>(3 * n);
       for (int c = 0; c < 3; ++c)
