@@ -184,5 +184,31 @@ TEST(LinkLoads, BlockSolveOverAllTimesEqualsSingleSolves) {
   EXPECT_LT(worst_reaction, 1e-8);
 }
 
+// A frame (a part of the ground) held on its foundation carries the ground
+// sides of its joint and drive plus its weight; nothing balances them but
+// the foundation, so loads_at neither checks their equilibrium nor hands
+// out-of-plane components to the pins. Reference: the resultant force is
+// the ground side of J1 plus the frame's weight (exact: the coupling and the
+// body-force basis are statically exact), 1e-9.
+TEST(LinkLoads, AFrameHeldOnItsFoundationCarriesTheGroundSidesUnbalanced) {
+  const mech::MultibodyModel model = double_pendulum();
+  const mech::Results results = mech::run_kinematics(mech::MultibodySystem(model), times(4));
+  LinkDefinition frame{"ground", &link_model(), {{"J1", "bore_1"}}, {}, {{"D1", "bore_1"}}};
+  EXPECT_THROW(LinkLoads(frame, model).loads_at(results.frames[2]), Error);  // as a free link: out of equilibrium
+  frame.held_on_foundation = true;
+  const LinkLoads loads(frame, model);
+  const double mass = fem::mass_properties(link_model().mesh, link_model().material).mass_kg;
+  for (const auto& f : results.frames) {
+    const LinkLoadResult r = loads.loads_at(f);
+    Eigen::Vector3d force, moment;
+    fem::resultant(link_model().mesh, r.forces, Eigen::Vector3d::Zero(), force, moment);
+    const Eigen::Vector2d expected = f.joints[0].on_i.force_world + mass * model.gravity;
+    EXPECT_LT((force.head<2>() - expected).norm(), 1e-9 * expected.norm()) << "t = " << f.t;
+    EXPECT_LT(std::abs(force.z()), 1e-9 * expected.norm());
+    EXPECT_EQ(r.out_of_plane_force_n, 0.0);
+    EXPECT_EQ(r.out_of_plane_moment_nm, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace kinetofem::loads
