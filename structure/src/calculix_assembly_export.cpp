@@ -225,7 +225,13 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
     require(p >= 0, "CalculiX deck {}: interface '{}' is on body '{}', whose part was not given", path.string(),
             i.name, i.body);
     const AssemblyDeckPart& dp = deck.parts[size_t(p)];
-    const Eigen::MatrixXd& G = assembly.interface_columns(i.body);
+    const Eigen::MatrixXd* columns = nullptr;
+    try {
+      columns = &assembly.interface_columns(i.body);
+    } catch (const Error& e) {
+      fail("CalculiX deck {} (written with the distributing couplings' equations only): {}", path.string(), e.what());
+    }
+    const Eigen::MatrixXd& G = *columns;
     require(G.rows() == 3 * dp.nodes, "CalculiX deck {}: {} is not the part the assembly was built with",
             path.string(), parts[size_t(p)].name());
     const int local = local_count[i.body]++;

@@ -172,3 +172,25 @@ TEST(CalculixAssemblyExport, PartsOfAnotherAssemblyAreAnError) {
 
 }  // namespace
 }  // namespace kinetofem::structure
+
+namespace kinetofem::structure {
+namespace {
+
+TEST(CalculixAssemblyExport, RigidBoreCouplingsAreAnError) {
+  const mech::ManipulatorDefinition def = test::lever_chain_definition();
+  mech::MultibodyModel model = mech::make_manipulator_model(def);
+  std::vector<Part> parts = test::lever_chain_parts(def, test::steel());
+  pipeline::apply_mass_properties(model, parts, Log::quiet());
+  const mech::Frame frame = pipeline::solve_static_pose(model, {0.0});
+  AssemblyOptions options;
+  options.coupling = BoreCoupling::RigidBore;
+  options.chains = {{"chain", 2e6}};
+  const ElasticAssembly assembly(parts, model, options);
+  Scratch dir;
+  const std::string what =
+      test::error_of([&] { write_calculix_assembly_deck(assembly, parts, model, frame, dir.path / "x.inp"); });
+  EXPECT_NE(what.find("distributing couplings' equations only"), std::string::npos) << what;
+}
+
+}  // namespace
+}  // namespace kinetofem::structure
