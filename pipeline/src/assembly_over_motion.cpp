@@ -347,8 +347,8 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
   if (!summary.pins.empty())
     log.info(
         "  parts in their own planes ({} pin(s) between bores at different z): the per-part stress above uses the "
-        "planar multibody reactions (no out-of-plane moment); the elastic assembly carries the out-of-plane moments "
-        "(its fields {}<body>, its pins' histories {}<joint>.*)",
+        "planar multibody reactions (without the moments of the offsets between bores); the elastic assembly carries "
+        "them (its fields {}<body>, its pins' histories {}<joint>.*)",
         summary.pins.size(), post::layout::kAssemblyBodyPrefix, post::layout::kAssemblyPinPrefix);
   const bool determinate = summary.indeterminacy.in_plane == 0;
   if (determinate && summary.worst_chain_mismatch > 1e-6)

@@ -42,7 +42,7 @@ TEST(PlaceMesh, QuarterTurnAndOffsetMoveAKnownNodeExactly) {
   fem::Mesh mesh = testing::box_mesh(box);
   const fem::Index corner = node_at(mesh, {0.3, 0.04, 0.02});
   ASSERT_GE(corner, 0);
-  place_mesh(mesh, {{0.1, -0.2}, 90 * kDeg});
+  place_mesh(mesh, {{0.1, -0.2, 0.0}, 90 * kDeg});
   // Reference: x_body = R_z(90 deg) x + offset (part_model.hpp):
   // (0.3, 0.04, 0.02) -> (-0.04 + 0.1, 0.3 - 0.2, 0.02). Tolerance 1e-15 m:
   // cos(pi/2) = 6e-17 in double, times 0.3 m, plus the sums' round-off.
@@ -51,12 +51,26 @@ TEST(PlaceMesh, QuarterTurnAndOffsetMoveAKnownNodeExactly) {
   EXPECT_EQ(mesh.nodes(corner, 2), 0.02);  // z untouched: the turn is about z (exact)
 }
 
+TEST(PlaceMesh, OffsetAlongThePinAxesPutsThePartInItsOwnPlane) {
+  testing::BoxMeshOptions box;
+  box.length_m = {0.3, 0.04, 0.02};
+  box.divisions = {3, 2, 1};
+  fem::Mesh mesh = testing::box_mesh(box);
+  const fem::Index corner = node_at(mesh, {0.3, 0.04, 0.02});
+  ASSERT_GE(corner, 0);
+  place_mesh(mesh, {{0.0, 0.0, 0.04}, 0.0});
+  // Reference: x_body = x + (0, 0, 40 mm); a sum of two doubles (1e-17 m).
+  EXPECT_EQ(mesh.nodes(corner, 0), 0.3);
+  EXPECT_EQ(mesh.nodes(corner, 1), 0.04);
+  EXPECT_NEAR(mesh.nodes(corner, 2), 0.06, 1e-17);
+}
+
 TEST(PlaceMesh, LeavesConnectivityAndEverySetUnchanged) {
   testing::BoxMeshOptions box;
   box.divisions = {2, 2, 1};
   const fem::Mesh before = testing::box_mesh(box);
   fem::Mesh after = before;
-  place_mesh(after, {{1.0, 2.0}, 30 * kDeg});
+  place_mesh(after, {{1.0, 2.0, 0.0}, 30 * kDeg});
   ASSERT_FALSE(after.nodes.isApprox(before.nodes));  // it did move the nodes
   ASSERT_EQ(after.blocks.size(), before.blocks.size());
   EXPECT_EQ(after.blocks.front().connectivity, before.blocks.front().connectivity);
@@ -131,7 +145,7 @@ TEST(ApplyMassProperties, PlacedMeshMovesTheCentreOfMass) {
   // from (L/2, 0) to (0, L/2); I_zz about the centre is unchanged (analytic;
   // 1e-12 relative: the sums over the elements and the turn's round-off).
   Part part = test::beam_part("beam", test::beam_pendulum_attachments());
-  place_mesh(part.model.mesh, {{0.0, 0.0}, 90 * kDeg});
+  place_mesh(part.model.mesh, {{0.0, 0.0, 0.0}, 90 * kDeg});
   part.mass = fem::mass_properties(part.model.mesh, part.model.material);
   mech::MultibodyModel model = test::beam_pendulum();
   apply_mass_properties(model, {part}, Log::quiet());
@@ -217,7 +231,7 @@ TEST(CheckPartAgainstModel, JointFarFromItsBoreNamesTheJointAndTheDistance) {
   // from the centre of face x0 (analytic: the face's nodes are symmetric about
   // y = 0.03 after the offset), far beyond half the face's mean radius (~5 mm).
   Part part = test::beam_part("beam", test::double_link_attachments());
-  place_mesh(part.model.mesh, {{0.0, 0.03}, 0.0});
+  place_mesh(part.model.mesh, {{0.0, 0.03, 0.0}, 0.0});
   const std::string message = error_of([&] { check_part_against_model(part, test::double_link()); });
   EXPECT_TRUE(contains(message, "part 'beam' (test beam): joint 'J1' at (0.000, 0.000) mm (body frame) lies 30.000 mm "
                                 "from the centre of its face set 'x0'"))
@@ -282,7 +296,7 @@ TEST(CheckPartAgainstModel, Spec1LeverTurnedByAQuarterFailsAtJointA) {
   const mech::MultibodyModel model = mech::make_manipulator_model(test::lever_chain_definition());
   Part lever = preset_parts(mech::ManipulatorType::LeverChain).front();
   ASSERT_EQ(lever.body(), "lever");
-  place_mesh(lever.model.mesh, {{0.0, 0.0}, 90 * kDeg});
+  place_mesh(lever.model.mesh, {{0.0, 0.0, 0.0}, 90 * kDeg});
   const std::string message = error_of([&] { check_part_against_model(lever, model); });
   const std::string head = "joint 'A' at (0.000, 500.000) mm (body frame) lies ";
   const std::size_t at = message.find(head);
