@@ -27,7 +27,9 @@
 // the arm a rigid body (its interfaces tied to its node pair) and the drive
 // a torsional spring (a second SPRING1 beside the chain's). And the
 // two-link arm in motion (d'Alembert loads) on a column frame part held at
-// its foot (the foundation as *BOUNDARY).
+// its foot (the foundation as *BOUNDARY), and with its second link 40 mm
+// out of the first's plane (an elastic Timoshenko pin between the bores at
+// different z, a spring of S: SPRING1 terms in the deck).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -236,6 +238,34 @@ TEST(AssemblyCalculix, TwoLinkArmOnAColumnFrameMatchesCcx) {
   ElasticAssembly assembly(parts, model, options);
   const PoseSolution pose = assembly.solve(frame);
   expect_agreement("two-link arm on a column", assembly, parts, model, frame, pose, "H");
+}
+
+}  // namespace
+}  // namespace kinetofem::structure
+
+namespace kinetofem::structure {
+namespace {
+
+// The two-link arm with link2 in its own plane, 40 mm out of link1's along
+// the pin axes: the elbow pin J2 joins bores at different z, an elastic
+// (Timoshenko) pin, a spring of the assembly's S, written as such.
+TEST(AssemblyCalculix, TwoLinkArmWithAnElasticPinMatchesCcx) {
+  if (!have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
+  const test::TwoLinkArm arm;
+  mech::MultibodyModel model = test::two_link_arm(arm);
+  std::vector<Part> parts = test::two_link_parts(arm);
+  parts[1].model.mesh.nodes.col(2).array() += 0.04;
+  parts[1].mass = fem::mass_properties(parts[1].model.mesh, fem::element_materials(parts[1].model));
+  pipeline::apply_mass_properties(model, parts, Log::quiet());
+  const mech::Frame frame = mech::run_kinematics(mech::MultibodySystem(model), {0.0, 0.2, 0.5}).frames[1];
+  AssemblyOptions options;
+  options.drives = {{"d2", 3000.0}};
+  options.points = {{"H", "link2", "tip", "x1"}};
+  options.pins = {{"J2", 0.012, {}, {}}};
+  ElasticAssembly assembly(parts, model, options);
+  const PoseSolution pose = assembly.solve(frame);
+  ASSERT_EQ(pose.pins.size(), 1u);
+  expect_agreement("two-link arm with an elastic pin", assembly, parts, model, frame, pose, "H");
 }
 
 }  // namespace
