@@ -183,6 +183,34 @@ TEST(AssemblyPinsInOwnPlanes, JointForcesEqualTheReactionsInPlaneAndBalanceOutOf
   }
 }
 
+// A pin to the rigid ground: link1 too out of the mechanism's plane (z =
+// 20 mm), so J1's pin runs from the ground's joint point at z = 0 to
+// link1's bore. Reference: the multibody reactions in the plane (the arm
+// stays determinate in it), 1e-8 of the largest, as above.
+TEST(AssemblyPinsInOwnPlanes, APinToTheGroundStartsInTheMechanismsPlane) {
+  const test::TwoLinkArm arm;
+  OffsetArm r = offset_arm(arm, {0.0, -kG});
+  r.parts[0].model.mesh.nodes.col(2).array() += 0.020;
+  r.parts[0].mass = fem::mass_properties(r.parts[0].model.mesh, r.parts[0].model.material);
+  const std::vector<mech::Frame> frames = mech::run_kinematics(mech::MultibodySystem(r.model), {0.25}).frames;
+  ElasticAssembly assembly(r.parts, r.model, with_pin());
+  const PoseSolution pose = assembly.solve(frames.front());
+  ASSERT_EQ(pose.pins.size(), 2u);
+  EXPECT_NEAR(pose.pin("J1").length_m, 0.020, 1e-12);
+  EXPECT_NEAR(pose.pin("J1").end_i_m.z(), 0.0, 1e-15);
+  EXPECT_NEAR(pose.pin("J2").length_m, kOffset - 0.020, 1e-12);
+  double scale = 0.0, worst = 0.0;
+  for (const auto& jf : frames.front().joints) scale = std::max(scale, jf.on_i.force_world.norm());
+  for (const auto& jf : frames.front().joints) {
+    const JointLoad& jl = pose.joint(jf.name);
+    worst = std::max({worst, (jl.force_on_i_n.head<2>() - jf.on_i.force_world).norm(),
+                      (jl.force_on_j_n.head<2>() - jf.on_j.force_world).norm()});
+  }
+  std::printf("  pins J1 (to the ground) and J2: in-plane joint forces vs reactions %.2e\n", worst / scale);
+  EXPECT_LT(worst / scale, 1e-8);
+  EXPECT_GT(pose.pin("J1").loads.bending_stress_pa, 0.0);
+}
+
 // The split of a tracked point's displacement still adds up with the pin in it.
 TEST(AssemblyPinsInOwnPlanes, UnitLoadSplitAddsUpWithThePin) {
   const test::TwoLinkArm arm;
