@@ -27,6 +27,9 @@ struct GeometryJob {
   // Called with the loaded model (after the volume check, before meshing):
   // e.g. adds physical groups. `context` is the file name for messages.
   std::function<void(GmshSession& session, const std::string& context)> before_meshing;
+  // Called with the mesh in metres as it comes back from the child process,
+  // before it is cached: e.g. corrects sets.
+  std::function<void(fem::Mesh& mesh)> after_meshing;
   // Appended to the mesh cache key: everything of the job that changes the
   // mesh beyond the file, the parameters and the options. Empty for
   // mesh_geometry (its cache keys are those of earlier versions).

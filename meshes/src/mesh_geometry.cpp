@@ -291,8 +291,10 @@ fem::Mesh mesh_geometry_in_this_process(const std::filesystem::path& file, const
 // hang inside Gmsh becomes an Error naming the file (meshing_process.hpp).
 fem::Mesh mesh_geometry_uncached(const std::filesystem::path& file, const MeshOptions& options,
                                  const detail::GeometryJob& job) {
-  return detail::mesh_in_child_process(file.string(), detail::lower_extension(file), options,
-                                       [&] { return mesh_geometry_in_this_process(file, options, job); });
+  fem::Mesh mesh = detail::mesh_in_child_process(file.string(), detail::lower_extension(file), options,
+                                                 [&] { return mesh_geometry_in_this_process(file, options, job); });
+  if (job.after_meshing) job.after_meshing(mesh);  // here: the child's mesh comes back through a .msh
+  return mesh;
 }
 
 }  // namespace

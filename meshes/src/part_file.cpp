@@ -617,6 +617,7 @@ fem::Mesh mesh_part_file(const std::filesystem::path& part_file, const PartFileO
     job.load_model = [weld](GmshSession& session, const std::string& name) {
       detail::load_welded_part(session, name, weld);
     };
+    job.after_meshing = detail::fix_solid_node_sets;
     job.cache_key_extra += weld_cache_key(part);
   }
   fem::Mesh meshed = detail::mesh_geometry_file(file, mesh, job);

@@ -37,6 +37,27 @@ ElementSolids element_solids(const fem::Mesh& mesh) {
   return solids;
 }
 
+std::string place_in_welded_part(const fem::Mesh& mesh, fem::Index node) {
+  const auto [names, solid_of] = element_solids(mesh);
+  if (names.empty()) return {};
+  int solid = -1;
+  fem::Index global = 0;
+  for (const auto& block : mesh.blocks)
+    for (fem::Index e = 0; e < block.size(); ++e, ++global) {
+      const int s = solid_of[std::size_t(global)];
+      if (s < 0 || (solid >= 0 && s >= solid)) continue;
+      const auto nodes = block.element(e);
+      if (std::find(nodes.begin(), nodes.end(), node) != nodes.end()) solid = s;
+    }
+  if (solid < 0) return {};
+  std::string place = "solid " + names[std::size_t(solid)];
+  const std::string seam_prefix = kWeldSetPrefix;
+  for (const auto& [name, nodes] : mesh.node_sets)
+    if (name.rfind(seam_prefix, 0) == 0 && std::binary_search(nodes.begin(), nodes.end(), node))
+      return place + ", seam " + name;
+  return place;
+}
+
 namespace detail {
 
 namespace {
@@ -60,8 +81,8 @@ bool is_step_or_iges(const std::filesystem::path& file) {
 
 // Imports `file` into the current model, scaled into the model's unit; its
 // volumes in the order OpenCASCADE gives them (the file's order).
-std::vector<int> import_volumes(GmshSession& session, const std::string& context,
-                                const std::filesystem::path& file, const WeldedPartJob& job) {
+std::vector<int> import_volumes(GmshSession& session, const std::filesystem::path& file,
+                                const WeldedPartJob& job) {
   std::vector<int> volumes;
   std::size_t shape_count = 0;
   session.call(file.string(), "importing the shape", [&] {
@@ -96,7 +117,7 @@ std::vector<int> volumes_holding_points(GmshSession& session, const std::string&
                                         const std::vector<Eigen::Vector3d>& points_m) {
   std::vector<int> holder(points_m.size(), -1);
   if (points_m.empty()) return holder;
-  const auto volumes = import_volumes(session, context, job.part_file, job);
+  const auto volumes = import_volumes(session, job.part_file, job);
   session.call(context, "locating the points of the [[solid]] entries", [&] {
     const double half = 0.5e-6 / job.model_unit_m;
     for (std::size_t p = 0; p < points_m.size(); ++p) {
@@ -248,7 +269,7 @@ void load_welded_part(GmshSession& session, const std::string& context, const We
     for (const auto& solid : job.solids)
       if (solid.file.empty() && solid.inside_m) points.push_back(*solid.inside_m);
     const auto holders = volumes_holding_points(session, context, job, points);
-    const auto volumes = import_volumes(session, context, job.part_file, job);
+    const auto volumes = import_volumes(session, job.part_file, job);
     file_names.assign(volumes.size(), std::string());
     std::size_t point = 0;
     for (const auto& solid : job.solids) {
@@ -288,7 +309,7 @@ void load_welded_part(GmshSession& session, const std::string& context, const We
   }
   for (const auto& solid : job.solids) {
     if (solid.file.empty()) continue;
-    const auto volumes = import_volumes(session, context, solid.file, job);
+    const auto volumes = import_volumes(session, solid.file, job);
     require(volumes.size() == 1,
             "{}: [[solid]] '{}': the file holds {} solids; a [[solid]] file holds one (list each "
             "solid of a multi-solid file by inside_mm under a [[part]] file instead)",
@@ -379,6 +400,22 @@ void load_welded_part(GmshSession& session, const std::string& context, const We
   });
 }
 
+void fix_solid_node_sets(fem::Mesh& mesh) {
+  const auto [names, solid_of] = element_solids(mesh);
+  std::vector<std::vector<fem::Index>> nodes(names.size());
+  fem::Index global = 0;
+  for (const auto& block : mesh.blocks)
+    for (fem::Index e = 0; e < block.size(); ++e, ++global)
+      if (const int s = solid_of[std::size_t(global)]; s >= 0)
+        for (fem::Index n : block.element(e)) nodes[std::size_t(s)].push_back(n);
+  for (std::size_t s = 0; s < names.size(); ++s) {
+    auto& list = nodes[s];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    mesh.node_sets[solid_set_name(names[s])] = std::move(list);
+  }
+}
+
 void add_weld_sets(fem::Mesh& mesh) {
   using fem::Index;
   const auto [names, solid_of] = element_solids(mesh);
@@ -403,7 +440,7 @@ void add_weld_sets(fem::Mesh& mesh) {
         const auto local = fem::element_face_nodes(block.type, f);
         std::array<Index, 4> key{-1, -1, -1, -1};
         for (int k = 0; k < corners; ++k) key[std::size_t(k)] = element[local[std::size_t(k)]];
-        std::sort(key.begin(), key.begin() + corners);
+        std::sort(key.begin(), key.end());  // a triangle's -1 pad sorts first, alike for all
         faces[key].push_back({b, e, f, solid});
       }
     }

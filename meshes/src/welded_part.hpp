@@ -39,4 +39,10 @@ void load_welded_part(GmshSession& session, const std::string& context, const We
 
 void add_weld_sets(fem::Mesh& mesh);
 
+// Makes each node set "solid.<name>" the nodes of the solid's elements: Gmsh
+// 4.8's nodes of a fragmented volume with its boundary (getNodes with
+// includeBoundary) can hold every node of the model, and a .msh file (the
+// mesh cache) holds a set's node list only as its elements' nodes.
+void fix_solid_node_sets(fem::Mesh& mesh);
+
 }  // namespace kinetofem::meshes::detail

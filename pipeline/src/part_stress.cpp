@@ -158,6 +158,9 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.iterative_solver = env.iterative_solver;
   ps.solver_summary = env.solver_summary;
   const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
+  // A welded part: the peak's solid, and its seam when it lies on one.
+  if (const std::string place = meshes::place_in_welded_part(supported.mesh, ps.peak_von_mises_node); !place.empty())
+    log.info("  {}: the peak von Mises lies in {}", ps.body, place);
   log.detail("  {}: {} right-hand sides for {} output times{}", ps.body, ps.right_hand_sides, frames.size(),
            ps.superposed ? " (unit-load superposition)" : " (step by step)");
   if (held)

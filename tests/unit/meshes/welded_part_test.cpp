@@ -120,6 +120,38 @@ TEST(WeldedPart, TwoTouchingBoxesInOneFileAreOneConformalBody) {
   const auto mesh = mesh_part_file(dir / "two.brep", in_mm(), options());
   expect_welded_boxes(mesh, "solid1", "solid2");
   EXPECT_TRUE(mesh.element_sets.count("body"));
+  // Where a node lies: on the seam, and in the second box only.
+  const Index on_seam = mesh.node_sets.at("weld.solid1.solid2").front();
+  EXPECT_EQ(place_in_welded_part(mesh, on_seam), "solid solid1, seam weld.solid1.solid2");
+  Index far = 0;
+  for (Index n = 0; n < mesh.node_count(); ++n)
+    if (mesh.nodes(n, 0) > mesh.nodes(far, 0)) far = n;
+  EXPECT_EQ(place_in_welded_part(mesh, far), "solid solid2");
+}
+
+TEST(WeldedPart, TheMeshCacheKeyCoversEverySolidFileAndTheTolerance) {
+  TempDir dir;
+  write_boxes(dir / "a.brep", {two_boxes(0.0)[0]});
+  write_boxes(dir / "b.brep", {two_boxes(0.0)[1]});
+  auto part = in_mm();
+  part.solids = {{"plate", dir / "a.brep", {}}, {"hub", dir / "b.brep", {}}};
+  auto o = options();
+  o.cache_dir = dir / "cache";
+  auto entries = [&] {
+    return std::distance(std::filesystem::directory_iterator(o.cache_dir), std::filesystem::directory_iterator());
+  };
+  const auto first = mesh_part_file({}, part, o);
+  EXPECT_EQ(entries(), 1);
+  EXPECT_EQ(mesh_part_file({}, part, o).node_count(), first.node_count());  // from the cache
+  EXPECT_EQ(entries(), 1);
+  // The second solid's file changes (a box twice as long): a new mesh.
+  write_boxes(dir / "b.brep", {{20, 0, 0, 40, 10, 10}});
+  const auto longer = mesh_part_file({}, part, o);
+  EXPECT_EQ(entries(), 2);
+  EXPECT_GT(longer.node_count(), first.node_count());
+  part.weld_tolerance_m = 0.01e-3;
+  mesh_part_file({}, part, o);
+  EXPECT_EQ(entries(), 3);
 }
 
 TEST(WeldedPart, TwoFilesAreWeldedAndNamedByTheirSolids) {

@@ -133,6 +133,11 @@ struct ElementSolids {
 };
 ElementSolids element_solids(const fem::Mesh& mesh);
 
+// Where `node` lies in a welded part, for messages: "solid hub", "solid hub,
+// seam weld.hub.plate" (on a seam: the solid first by name); "" for a part of
+// one solid.
+std::string place_in_welded_part(const fem::Mesh& mesh, fem::Index node);
+
 struct PartFileOptions {
   // Metres per file unit: 1e-3 for mm, 1 for m. Required for .geo, .brep
   // and .msh; for STEP/IGES the file's own unit is used and, if this is
