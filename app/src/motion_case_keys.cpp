@@ -21,13 +21,6 @@ void read_shared_motion_keys(const CaseFile& c, const RunOptions& options, const
   const std::vector<std::string> bodies = bodies_with_parts(run_case.parts);
   run_case.assembly = read_assembly(bodies);
   run_case.vibration = read_vibration(c, run_case.assembly);
-  // The assembly's modes reduce free parts with rigid-body modes; a frame
-  // held on its foundation is not carried into that reduction yet.
-  for (const auto& p : run_case.parts)
-    require(!run_case.vibration || p.held_face.empty(),
-            "{} = true: the vibration does not model a part of the ground (the frame '{}', held on '{}') yet: set it to "
-            "false, or drop the frame part",
-            c.where("vibration.enabled"), p.attachments.body, p.held_face);
   run_case.fatigue = read_fatigue(c, bodies);
   run_case.material = read_material(c);
   run_case.mesh = read_part_mesh_options(c, options.output_dir);

@@ -58,6 +58,7 @@ struct AssemblyModes::Impl {
   struct PartRed {
     std::string body, label;
     int body_index = -1;
+    bool held = false;  // a part of the ground, held on its foundation
     const fem::Mesh* mesh = nullptr;
     const loads::LinkLoads* loads = nullptr;
     std::vector<CbInterface> interfaces;
@@ -191,13 +192,10 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     pr.body = part.body();
     pr.label = part.label.empty() ? fmt::format("part '{}'", pr.body) : part.label;
     pr.body_index = body_index(pr.body);
-    // The reduction below counts on the rigid-body modes of a free part and
-    // the rigid motion of its body; a frame held on its foundation has
-    // neither, and its fixed nodes are not yet carried into the reduction.
-    require(!model.bodies[size_t(pr.body_index)].fixed,
-            "vibration: {} is a part of the ground (a frame held on its foundation), which the assembly's modes do "
-            "not model yet: set vibration.enabled = false, or drop the frame part",
-            pr.label);
+    // A part of the ground (the frame) is held on its foundation: reduced
+    // with its held model (no rigid-body modes), and its interfaces move by
+    // its deformation alone, as in the assembly's statics.
+    pr.held = model.bodies[size_t(pr.body_index)].fixed;
     pr.mesh = &assembly.supported_analysis(pr.body).model().mesh;
     pr.loads = &assembly.part_loads(pr.body);
     const MatrixXd& G = assembly.interface_columns(pr.body);
@@ -302,7 +300,17 @@ void AssemblyModes::Impl::reduce_parts(const vibration::CraigBamptonOptions& giv
     cbo.eigen.label = pr.label;
     fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(pr.body);
     analysis.factorize();  // a no-op: the factor is lent while the reductions need it (pipeline::PartFactors)
-    pr.cb = vibration::reduce_craig_bampton(analysis, interfaces, cbo, &log);
+    if (pr.held) {
+      // Held: modes over the free equations, taken to the mesh's 3N DoFs
+      // (zero on the foundation) like a free part's.
+      pr.cb = vibration::reduce_held_craig_bampton(analysis, interfaces, cbo, &log);
+      const fem::DofMap& dofs = analysis.dofs();
+      pr.cb.constraint_modes = vibration::expand_to_mesh_dofs(pr.cb.constraint_modes, dofs);
+      pr.cb.normal_modes = vibration::expand_to_mesh_dofs(pr.cb.normal_modes, dofs);
+      pr.cb.residual_vectors = vibration::expand_to_mesh_dofs(pr.cb.residual_vectors, dofs);
+    } else {
+      pr.cb = vibration::reduce_craig_bampton(analysis, interfaces, cbo, &log);
+    }
     require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
             "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,
             pr.cb.constraint_modes.rows(), 3 * pr.mesh->node_count());

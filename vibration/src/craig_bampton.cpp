@@ -299,25 +299,36 @@ CraigBamptonModel reduce(const fem::FeModel& part, const std::vector<PartInterfa
   StaticSolve static_solve;
   std::unique_ptr<OwnFactor> own;
   if (supported) {
-    // The free part's static solve over all 3N DoFs, with its 3-2-1 support:
-    // check that it is one (6 prescribed DoFs holding the six rigid modes).
     const fem::DofMap& sd = supported->dofs();
-    std::sort(support_equations.begin(), support_equations.end());
-    support_equations.erase(std::unique(support_equations.begin(), support_equations.end()),
-                            support_equations.end());
-    MatrixXd Rs(Index(support_equations.size()), 6);
-    for (size_t i = 0; i < support_equations.size(); ++i) Rs.row(Index(i)) = R.row(support_equations[i]);
-    require(sd.prescribed_count() == 6 && Eigen::FullPivLU<MatrixXd>(Rs).rank() == 6,
-            "Craig-Bampton reduction of '{}': the given static analysis has {} prescribed DoFs; a "
-            "statically determinate (3-2-1) support of the free part is needed",
-            label, sd.prescribed_count());
+    if (out.free_body) {
+      // The free part's static solve over all 3N DoFs, with its 3-2-1 support:
+      // check that it is one (6 prescribed DoFs holding the six rigid modes).
+      std::sort(support_equations.begin(), support_equations.end());
+      support_equations.erase(std::unique(support_equations.begin(), support_equations.end()),
+                              support_equations.end());
+      MatrixXd Rs(Index(support_equations.size()), 6);
+      for (size_t i = 0; i < support_equations.size(); ++i) Rs.row(Index(i)) = R.row(support_equations[i]);
+      require(sd.prescribed_count() == 6 && Eigen::FullPivLU<MatrixXd>(Rs).rank() == 6,
+              "Craig-Bampton reduction of '{}': the given static analysis has {} prescribed DoFs; a "
+              "statically determinate (3-2-1) support of the free part is needed",
+              label, sd.prescribed_count());
+    } else {
+      // A part held by the analysis's own supports: the same free equations.
+      require(sd.free_count() == n && sd.prescribed_count() == dofs.prescribed_count(),
+              "Craig-Bampton reduction of '{}': the given static analysis has {} free DoFs, the held part {}",
+              label, sd.free_count(), n);
+    }
     const Index nodes = mesh.node_count();
-    static_solve = [supported, nodes](const MatrixXd& B) {
-      const std::vector<fem::DisplacementField> u = supported->solve_forces(B);
-      MatrixXd X(3 * nodes, B.cols());
+    // B and the result over the free equations of `dofs` (all 3N for a free
+    // part); the analysis takes and gives all 3N DoFs.
+    static_solve = [supported, nodes, &dofs](const MatrixXd& B) {
+      MatrixXd full = MatrixXd::Zero(3 * nodes, B.cols());
+      for (Index d = 0; d < 3 * nodes; ++d)
+        if (const Index eq = dofs.equation(d); eq >= 0) full.row(d) = B.row(eq);
+      const std::vector<fem::DisplacementField> u = supported->solve_forces(full);
       for (Index k = 0; k < B.cols(); ++k)
-        X.col(k) = Eigen::Map<const Eigen::VectorXd>(u[size_t(k)].data(), 3 * nodes);
-      return X;
+        full.col(k) = Eigen::Map<const Eigen::VectorXd>(u[size_t(k)].data(), 3 * nodes);
+      return restrict_rows(full, dofs);
     };
     out.factor_nonzeros = supported->solver_statistics().factor_nonzeros;
   } else {
@@ -473,6 +484,25 @@ CraigBamptonModel reduce_craig_bampton(fem::LinearStaticAnalysis& supported,
   fem::FeModel free_part = supported.model();
   free_part.supports.clear();
   return reduce(free_part, interfaces, options, log, &supported);
+}
+
+CraigBamptonModel reduce_held_craig_bampton(fem::LinearStaticAnalysis& held,
+                                            const std::vector<PartInterface>& interfaces,
+                                            const CraigBamptonOptions& options, const Log* log) {
+  require(!held.model().supports.empty(),
+          "Craig-Bampton reduction of '{}': the held part's static analysis has no supports (a free part: use "
+          "reduce_craig_bampton)", options.eigen.label);
+  const fem::FeModel part = held.model();
+  return reduce(part, interfaces, options, log, &held);
+}
+
+Eigen::MatrixXd expand_to_mesh_dofs(const Eigen::MatrixXd& free_rows, const fem::DofMap& dofs) {
+  require(free_rows.rows() == dofs.free_count(), "expand_to_mesh_dofs: {} rows for {} free equations",
+          free_rows.rows(), dofs.free_count());
+  MatrixXd out = MatrixXd::Zero(dofs.dof_count(), free_rows.cols());
+  for (Index d = 0; d < out.rows(); ++d)
+    if (const Index eq = dofs.equation(d); eq >= 0) out.row(d) = free_rows.row(eq);
+  return out;
 }
 
 std::string format_check(const CraigBamptonModel& m) {

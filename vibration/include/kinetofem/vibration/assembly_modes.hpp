@@ -10,6 +10,10 @@
 //                carries: the gripper, the casting), its fixed-interface
 //                modes and its residual vectors;
 // per moving rigid body, its origin's translation and rotation (body axes).
+// A part of the ground (the frame, structure::Part::held_face) is reduced
+// with its foundation held (vibration::reduce_held_craig_bampton: no
+// rigid-body modes); its interfaces, like in the assembly's statics, move by
+// its deformation alone (the ground does not move).
 // In body axes the parts' K_r, M_r and the rigid bodies' 6 x 6 masses do not
 // change with the pose; the pose enters through the interfaces' world
 // coordinates u = U(pose) x: the joints and rigid drives hold C U x = 0 and

@@ -68,6 +68,7 @@
 #include <Eigen/Core>
 
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/solver/dof_map.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/generalized_eigen.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
@@ -157,6 +158,21 @@ CraigBamptonModel reduce_craig_bampton(fem::LinearStaticAnalysis& supported,
                                        const std::vector<PartInterface>& interfaces,
                                        const CraigBamptonOptions& options,
                                        const Log* log = nullptr);
+
+// The same for a part held by the supports of its factorized static
+// analysis (a frame on its foundation: every node of a face set fixed):
+// K_s = K on the free equations, no rigid-body modes (S = F), every solve
+// through held.solve_forces. Psi, Phi and X are over the analysis's free
+// equations (n_free rows; expand_to_mesh_dofs gives them over the mesh's 3N
+// DoFs, zero on the held ones). Error if the analysis has no supports.
+CraigBamptonModel reduce_held_craig_bampton(fem::LinearStaticAnalysis& held,
+                                            const std::vector<PartInterface>& interfaces,
+                                            const CraigBamptonOptions& options,
+                                            const Log* log = nullptr);
+
+// Rows over the free equations of `dofs` as rows over all its DoFs (3N),
+// zero on the prescribed ones.
+Eigen::MatrixXd expand_to_mesh_dofs(const Eigen::MatrixXd& free_rows, const fem::DofMap& dofs);
 
 // The lowest `count` frequencies (Hz) of a small dense model K x = w^2 M x
 // (M symmetric positive definite), e.g. a reduced model with point masses
