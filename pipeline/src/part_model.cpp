@@ -129,6 +129,8 @@ void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>&
     require(it != model.bodies.end(), "{}: the mechanism has no body '{}'", part.label, part.body());
     const fem::MassProperties& mp = part.mass;
     if (it->fixed) {
+      require(!part.held_face.empty(), "{}: body '{}' is the ground: a part on it is the frame and needs held_face (its foundation face set)",
+              part.label, it->name);
       // The frame: the ground does not move, so its mass enters no equation
       // of motion; its weight loads its own stress and the foundation.
       log.info("  body '{}' (the ground) carries a frame part held on '{}': {:.4f} kg, not in the dynamics", it->name,

@@ -182,11 +182,25 @@ TEST(ApplyMassProperties, CaseValuesMustBeGivenWhenMassDoesNotComeFromTheMesh) {
       << message;
 }
 
-TEST(ApplyMassProperties, PartOnTheGroundIsAnErrorNamingIt) {
+TEST(ApplyMassProperties, PartOnTheGroundWithoutFoundationIsAnErrorNamingIt) {
   const Part part = test::beam_part("frame", test::beam_pendulum_attachments());
   mech::MultibodyModel model = test::beam_pendulum();
   const std::string message = error_of([&] { apply_mass_properties(model, {part}, Log::quiet()); });
-  EXPECT_TRUE(contains(message, "part 'frame' (test beam): body 'frame' is the ground")) << message;
+  EXPECT_TRUE(contains(message, "part 'frame' (test beam): body 'frame' is the ground: a part on it is the frame and needs held_face"))
+      << message;
+}
+
+TEST(ApplyMassProperties, FramePartLeavesTheGroundOutOfTheDynamics) {
+  // The ground does not move: a frame part's mass must not reach the model.
+  Part part = test::beam_part("frame", test::beam_pendulum_attachments());
+  part.held_face = "x0";
+  mech::MultibodyModel model = test::beam_pendulum();
+  const mech::MultibodyModel before = model;
+  EXPECT_NO_THROW(apply_mass_properties(model, {part}, Log::quiet()));
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    EXPECT_EQ(model.bodies[b].mass_kg, before.bodies[b].mass_kg) << model.bodies[b].name;
+    EXPECT_EQ(model.bodies[b].inertia_kgm2, before.bodies[b].inertia_kgm2) << model.bodies[b].name;
+  }
 }
 
 TEST(ApplyMassProperties, PartOnAMissingBodyIsAnErrorNamingIt) {
