@@ -27,6 +27,12 @@
 //    static response to the pose's loads equals the elastic assembly's own
 //    static solution at the tracked point (the vibration stage's
 //    "reduced-statics check") within 1e-6 of it.
+// 3. reduce_held_craig_bampton on a clamped beam's factorized analysis equals
+//    reduce_craig_bampton of the same supported model with its own
+//    factorization (the same algorithm, other solves): fixed-interface
+//    frequencies and the boundary blocks of K_r and M_r within 1e-9
+//    (round-off of two factorizations and two Lanczos runs); an analysis
+//    without supports is an Error naming the part.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -42,7 +48,9 @@
 #include "kinetofem/solver/generalized_eigen.hpp"
 #include "kinetofem/solver/mass_matrix.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/vibration/assembly_modes.hpp"
+#include "tip_mass_model.hpp"
 
 namespace kinetofem::structure {
 namespace {
@@ -203,6 +211,56 @@ TEST(AssemblyModesFramePart, ReducedStaticsOfTwoLinkArmOnColumnEqualTheAssemblys
     // The vibration stage's reduced-statics check (docs/vibration.md).
     EXPECT_LT(mismatch, 1e-6) << "t = " << frame.t;
   }
+}
+
+TEST(AssemblyModesFramePart, HeldReductionOnASharedFactorEqualsTheOwnFactorReduction) {
+  const vibration_tests::TipMassBeam b;
+  const fem::FeModel clamped = b.model(true);
+  const std::vector<vibration::PartInterface> tip = {b.tip_interface(clamped)};
+  vibration::CraigBamptonOptions options;
+  options.highest_frequency_of_interest_hz = 200.0;
+  options.eigen.label = "clamped beam";
+  const vibration::CraigBamptonModel own = vibration::reduce_craig_bampton(clamped, tip, options);
+  fem::LinearStaticAnalysis analysis(clamped, Log::quiet());
+  const vibration::CraigBamptonModel held = vibration::reduce_held_craig_bampton(analysis, tip, options);
+  ASSERT_EQ(held.mode_count, own.mode_count);
+  ASSERT_GT(held.mode_count, 0);
+  EXPECT_FALSE(held.free_body);
+  EXPECT_EQ(held.free_dofs, own.free_dofs);
+  EXPECT_EQ(held.constraint_modes.rows(), own.free_dofs);
+  const Index nb = held.boundary_count;
+  const double k_error = (held.stiffness.topLeftCorner(nb, nb) - own.stiffness.topLeftCorner(nb, nb)).cwiseAbs().maxCoeff() /
+                         own.stiffness.topLeftCorner(nb, nb).cwiseAbs().maxCoeff();
+  const double m_error = (held.mass.topLeftCorner(nb, nb) - own.mass.topLeftCorner(nb, nb)).cwiseAbs().maxCoeff() /
+                         own.mass.topLeftCorner(nb, nb).cwiseAbs().maxCoeff();
+  const double f_error =
+      ((held.normal_frequency_hz - own.normal_frequency_hz).cwiseQuotient(own.normal_frequency_hz)).cwiseAbs().maxCoeff();
+  std::printf("  held vs own factor: %ld modes, K_bb %.1e, M_bb %.1e, frequencies %.1e\n", long(held.mode_count),
+              k_error, m_error, f_error);
+  EXPECT_LT(k_error, 1e-9);
+  EXPECT_LT(m_error, 1e-9);
+  EXPECT_LT(f_error, 1e-9);
+  // Over the mesh's DoFs: zero on the clamp.
+  const MatrixXd full = vibration::expand_to_mesh_dofs(held.constraint_modes, analysis.dofs());
+  for (const fem::Index n : clamped.mesh.node_set("x0"))
+    EXPECT_EQ(full.middleRows(3 * n, 3).cwiseAbs().maxCoeff(), 0.0);
+
+  fem::FeModel free = clamped;
+  free.supports.clear();
+  fem::StaticSolverOptions deferred;
+  deferred.defer_factorization = true;
+  fem::LinearStaticAnalysis unsupported(free, Log::quiet(), deferred);
+  EXPECT_THROW(
+      {
+        try {
+          vibration::reduce_held_craig_bampton(unsupported, tip, options);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("'clamped beam'"), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find("no supports"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
 }
 
 }  // namespace
