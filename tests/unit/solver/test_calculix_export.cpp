@@ -21,6 +21,7 @@
 #include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
 #include "kinetofem/testing/box_mesh.hpp"
+#include "kinetofem/testing/calculix_run.hpp"
 
 namespace kinetofem::fem {
 namespace {
@@ -35,25 +36,8 @@ const std::vector<std::array<int, 2>> kC3D20Edges = {{1, 2}, {2, 3}, {3, 4}, {4,
                                                      {5, 6}, {6, 7}, {7, 8}, {8, 5},
                                                      {1, 5}, {2, 6}, {3, 7}, {4, 8}};
 
-// A scratch folder removed at the end of the test.
-struct ScratchDir {
-  fs::path path;
-  ScratchDir() {
-    path = fs::temp_directory_path() /
-           ("kinetofem_ccx_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() { fs::remove_all(path); }
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using ScratchDir = kinetofem::testing::CcxScratchDir;
+using kinetofem::testing::read_text;
 
 // Element connectivity as written in the deck: element lines (with
 // continuation lines joined) under the *ELEMENT keyword.
@@ -195,14 +179,10 @@ TEST(CalculixExport, WrongForceBlockSizeIsAnError) {
   EXPECT_THROW(write_calculix_deck(model, Eigen::MatrixXd::Zero(5, 1), dir.path / "x.inp"), Error);
 }
 
-bool have_ccx() { return std::system("command -v ccx > /dev/null 2>&1") == 0; }
+using kinetofem::testing::have_ccx;
 
 // Runs ccx on `job`.inp in `dir`; true when it finished.
-bool run_ccx(const fs::path& dir, const std::string& job) {
-  const std::string command = "cd '" + dir.string() + "' && OMP_NUM_THREADS=1 ccx -i " + job +
-                              " > " + job + ".log 2>&1";
-  return std::system(command.c_str()) == 0 && fs::exists(dir / (job + ".dat"));
-}
+bool run_ccx(const fs::path& dir, const std::string& job) { return kinetofem::testing::run_ccx(dir, job) >= 0.0; }
 
 // A few elements with two load cases and a prescribed nonzero displacement,
 // solved by ccx from the exported deck and by kinetofem: the same discrete

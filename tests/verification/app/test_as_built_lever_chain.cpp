@@ -14,6 +14,11 @@
 // With the lever, the frame and the pins rigid and the drive rigid, the roller
 // centre A stays, and the arm with the gripper fixed to it turns about A by
 //     theta = -e / ((e_z x (T - A)) . d),   u_H = theta e_z x (H - A).
+//
+// And the same model in steel, in its design pose, written as a CalculiX deck
+// (structure/calculix_assembly_export.hpp) and solved by ccx where it is
+// installed (skipped otherwise): H's displacement and every part's peak von
+// Mises stress over the integration points agree.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -30,33 +35,55 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/structure/calculix_assembly_export.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
+#include "kinetofem/testing/calculix_run.hpp"
 
 namespace kinetofem::app {
 namespace {
 
 namespace fs = std::filesystem;
 
+// The as-built lever-chain read from its bundled case file at a coarse mesh:
+// the model, the part specs, the assembly's options and the case's material.
+struct AsBuiltCase {
+  mech::MultibodyModel model;
+  std::vector<pipeline::PartSpec> specs;
+  structure::AssemblyOptions options;
+  fem::IsotropicMaterial material;
+  meshes::MeshOptions mesh;
+};
+
+AsBuiltCase read_as_built_lever_chain(const std::vector<std::string>& overrides, const fs::path& dir) {
+  const CaseFile c =
+      CaseFile::load("cases/lever_chain_manipulator_as_built/case.toml", linkage_schema(), false, overrides);
+  AsBuiltCase a;
+  a.model = read_linkage_model(c);
+  a.specs = read_parts(c, a.model);
+  std::vector<std::string> bodies;
+  for (const auto& s : a.specs) bodies.push_back(s.attachments.body);
+  a.options = read_linkage_assembly(c, a.model, bodies).value();
+  a.material = read_material(c);
+  a.mesh = read_part_mesh_options(c, dir);
+  return a;
+}
+
 TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
   const fs::path dir = fs::temp_directory_path() / "kinetofem_as_built_rigid";
   fs::remove_all(dir);
   // A coarse linear mesh: with the solids rigid the mesh size does not enter
   // H's deflection (the couplings are exact rigid-body maps).
-  const CaseFile c = CaseFile::load("cases/lever_chain_manipulator_as_built/case.toml", linkage_schema(), false,
-                                    {"mesh.element_size_mm=25", "mesh.order=1"});
-  mech::MultibodyModel model = read_linkage_model(c);
-  std::vector<pipeline::PartSpec> specs = read_parts(c, model);
-  std::vector<std::string> bodies;
-  for (const auto& s : specs) bodies.push_back(s.attachments.body);
-  std::optional<structure::AssemblyOptions> options = read_linkage_assembly(c, model, bodies);
-  ASSERT_TRUE(options.has_value());
+  AsBuiltCase a = read_as_built_lever_chain({"mesh.element_size_mm=25", "mesh.order=1"}, dir);
+  mech::MultibodyModel& model = a.model;
+  std::vector<pipeline::PartSpec>& specs = a.specs;
+  structure::AssemblyOptions* options = &a.options;
 
   // Rigid: E x 1e9 for the case's material, every solid's own and every pin's.
   // (Not 1e6: at steel the parts, pins and frame give most of H's deflection,
   // so at 1e6 their residual compliance is still 1.7e-6 of the chain's share
   // (measured), above the tolerance below; at 1e9 it is 1.7e-9.)
   constexpr double kStiffer = 1e9;
-  fem::IsotropicMaterial material = read_material(c);
+  fem::IsotropicMaterial material = a.material;
   material.youngs_modulus_pa *= kStiffer;
   for (auto& spec : specs)
     for (auto& solid : spec.solid_materials)
@@ -67,7 +94,7 @@ TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
   options->recover_stress = false;
 
   const std::vector<pipeline::Part> parts =
-      pipeline::build_part_models(specs, material, read_part_mesh_options(c, dir), Log::quiet());
+      pipeline::build_part_models(specs, material, a.mesh, Log::quiet());
   pipeline::apply_mass_properties(model, parts, Log::quiet(), specs);
   const mech::Frame frame = pipeline::solve_static_pose(model, {0.0});
 
@@ -87,12 +114,12 @@ TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
 
   const auto arm = std::find_if(frame.bodies.begin(), frame.bodies.end(), [](const auto& b) { return b.name == "arm"; });
   ASSERT_NE(arm, frame.bodies.end());
-  const Eigen::Vector3d a(arm->q.x(), arm->q.y(), 0.0);  // the arm's origin: the roller centre A
+  const Eigen::Vector3d roller_centre(arm->q.x(), arm->q.y(), 0.0);  // the arm's origin A
   const Eigen::Vector3d ez = Eigen::Vector3d::UnitZ();
-  const double theta = -stretch_m / ez.cross(tangent - a).dot(d);
+  const double theta = -stretch_m / ez.cross(tangent - roller_centre).dot(d);
   const structure::PointResult& h = pose.point("H");
   const Eigen::Vector3d h_in_plane(h.position_m.x(), h.position_m.y(), 0.0);
-  const Eigen::Vector3d expected = theta * ez.cross(h_in_plane - a);
+  const Eigen::Vector3d expected = theta * ez.cross(h_in_plane - roller_centre);
 
   std::printf("  chain: tension %.6f N (multibody %.6f N), span %.6f mm, stretch %.6e mm\n", chain.tension_n, tension_n,
               span_m * 1e3, stretch_m * 1e3);
@@ -110,6 +137,48 @@ TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
   EXPECT_LT(error, 1e-6);
   EXPECT_GT(expected.norm(), 0.0);
   fs::remove_all(dir);
+}
+
+TEST(AsBuiltLeverChain, CalculixSolvesTheDesignPoseAlike) {
+  if (!kinetofem::testing::have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
+  kinetofem::testing::CcxScratchDir dir("kinetofem_as_built_ccx");
+  // Coarse: SPOOLES orders the dense coupling equations slowly.
+  AsBuiltCase a = read_as_built_lever_chain({"mesh.element_size_mm=25"}, dir.path / "mesh");
+  const std::vector<pipeline::Part> parts = pipeline::build_part_models(a.specs, a.material, a.mesh, Log::quiet());
+  pipeline::apply_mass_properties(a.model, parts, Log::quiet(), a.specs);
+  const mech::Frame frame = pipeline::solve_static_pose(a.model, {0.0});
+  structure::ElasticAssembly assembly(parts, a.model, a.options);
+  const structure::PoseSolution pose = assembly.solve(frame);
+
+  const structure::AssemblyDeck deck =
+      structure::write_calculix_assembly_deck(assembly, parts, a.model, frame, dir.path / "pose.inp");
+  const double ccx_seconds = kinetofem::testing::run_ccx(dir.path, "pose");
+  ASSERT_GE(ccx_seconds, 0.0) << kinetofem::testing::read_text(dir.path / "pose.log");
+  const structure::AssemblyDeckResults ccx = structure::read_calculix_assembly_results(deck, dir.path / "pose");
+
+  const std::vector<structure::InterfaceInfo> interfaces = assembly.interfaces();
+  const auto h = std::find_if(interfaces.begin(), interfaces.end(),
+                              [](const auto& i) { return i.kind == "point" && i.name == "H"; });
+  ASSERT_NE(h, interfaces.end());
+  const Eigen::Vector3d ours = pose.point("H").displacement_m;
+  const Eigen::Vector3d theirs = ccx.interface_motion.at(size_t(h - interfaces.begin())).head<3>();
+  const double du = (theirs - ours).norm() / ours.norm();
+  std::printf("  deck: %lld nodes, %lld solid elements, %d equations, %d springs, %d held DoFs; ccx %.1f s\n"
+              "  H: kinetofem (%.6e, %.6e, %.6e) mm, ccx (%.6e, %.6e, %.6e) mm, difference %.2e\n",
+              deck.node_count, deck.solid_elements, deck.equations, deck.springs, deck.boundaries, ccx_seconds,
+              ours.x() * 1e3, ours.y() * 1e3, ours.z() * 1e3, theirs.x() * 1e3, theirs.y() * 1e3, theirs.z() * 1e3, du);
+  // Reference: CalculiX 2.20 on the identical deck; 0.5 % (ccx prints 7
+  // digits; the two solve the same discrete problem).
+  EXPECT_LT(du, 5e-3);
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const structure::PartField& field = pose.part(parts[p].body());
+    const double peak_ours =
+        kinetofem::testing::peak_gauss_von_mises(parts[p].model, field.displacement_m, deck.parts[p].rotation);
+    const double peak_theirs = ccx.peak_gauss_von_mises_pa.at(p);
+    std::printf("  %s: peak von Mises at the integration points %.4f MPa, ccx %.4f MPa (%.2e)\n",
+                parts[p].body().c_str(), peak_ours * 1e-6, peak_theirs * 1e-6, peak_theirs / peak_ours - 1);
+    EXPECT_NEAR(peak_theirs, peak_ours, 5e-3 * peak_ours) << parts[p].body();  // CalculiX 2.20, 0.5 %
+  }
 }
 
 }  // namespace

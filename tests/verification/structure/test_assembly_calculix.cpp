@@ -46,6 +46,7 @@
 #include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/solver/element_materials.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
+#include "kinetofem/testing/calculix_run.hpp"
 #include "kinetofem/structure/calculix_assembly_export.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 
@@ -56,38 +57,12 @@ namespace fs = std::filesystem;
 
 constexpr double kChainEA = 2e6;  // N
 
-// A fresh folder for the test's deck and ccx's files, removed at its end.
-struct ScratchDir {
-  fs::path path;
-  ScratchDir() {
-    path = fs::temp_directory_path() / ("kinetofem_assembly_ccx_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() {
-    if (!std::getenv("KINETOFEM_KEEP_CCX")) fs::remove_all(path);  // set: keep the deck and ccx's files
-  }
+struct ScratchDir : kinetofem::testing::CcxScratchDir {
+  ScratchDir() : CcxScratchDir("kinetofem_assembly_ccx") {}
 };
-
-bool have_ccx() { return std::system("command -v ccx > /dev/null 2>&1") == 0; }
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs ccx on `job`.inp in `dir`; its wall time (s), or a negative value when it failed.
-double run_ccx(const fs::path& dir, const std::string& job) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::string command =
-      "cd '" + dir.string() + "' && OMP_NUM_THREADS=1 ccx -i " + job + " > " + job + ".log 2>&1";
-  const bool ok = std::system(command.c_str()) == 0 && fs::exists(dir / (job + ".dat"));
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return ok ? seconds : -1.0;
-}
+using kinetofem::testing::have_ccx;
+using kinetofem::testing::read_text;
+using kinetofem::testing::run_ccx;
 
 size_t interface_of(const ElasticAssembly& assembly, const std::string& kind, const std::string& name) {
   const std::vector<InterfaceInfo> all = assembly.interfaces();
@@ -95,17 +70,6 @@ size_t interface_of(const ElasticAssembly& assembly, const std::string& kind, co
     if (all[k].kind == kind && all[k].name == name) return k;
   ADD_FAILURE() << "no " << kind << " interface '" << name << "'";
   return 0;
-}
-
-// Largest von Mises stress over the integration points of a part's field
-// (world axes, as the assembly gives it, turned back to the body axes).
-double peak_gauss_von_mises(const Part& part, const fem::DisplacementField& world, const Eigen::Matrix3d& R) {
-  const fem::DisplacementField body = world * R;  // rows: u_body^T = u_world^T R
-  const fem::GaussPointStress gp = fem::gauss_point_stress(part.model.mesh, fem::element_materials(part.model), body);
-  double peak = 0.0;
-  for (Eigen::Index q = 0; q < gp.stress_pa.rows(); ++q)
-    peak = std::max(peak, fem::von_mises(gp.stress_pa.row(q).transpose()));
-  return peak;
 }
 
 // What ccx's solution of the deck of `pose` must agree with: the tracked
@@ -138,7 +102,7 @@ void expect_agreement(const std::string& what, const ElasticAssembly& assembly, 
     const PartField& field = pose.part(parts[p].body());
     const double nodal_ours = field.von_mises_pa.maxCoeff();
     const double nodal_theirs = ccx.nodal_von_mises_pa.at(p).maxCoeff();
-    const double gauss_ours = peak_gauss_von_mises(parts[p], field.displacement_m, deck.parts[p].rotation);
+    const double gauss_ours = kinetofem::testing::peak_gauss_von_mises(parts[p].model, field.displacement_m, deck.parts[p].rotation);
     const double gauss_theirs = ccx.peak_gauss_von_mises_pa.at(p);
     const double dfield = (ccx.displacement_m[p] - field.displacement_m).cwiseAbs().maxCoeff() /
                           field.displacement_m.cwiseAbs().maxCoeff();
