@@ -92,6 +92,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     require(found, "link '{}': the body carries no point mass '{}'", link.body,
             attachment.point_mass);
     m.coupling = coupling_on(attachment.face_set);
+    m.position_body.z() = couplings_[size_t(m.coupling)]->centroid().z();
     masses_.push_back(std::move(m));
   }
   for (const auto& attachment : link.drives) {
@@ -154,6 +155,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     s.on_i = sp.body_i == link.body;
     s.point_body = lift(s.on_i ? spring_point_i_[size_t(s.spring_index)] : spring_point_j_[size_t(s.spring_index)]);
     s.coupling = coupling_on(attachment.face_set);
+    s.point_body.z() = couplings_[size_t(s.coupling)]->centroid().z();
     springs_.push_back(std::move(s));
   }
   for (const auto& attachment : link.point_forces) {
@@ -167,6 +169,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     f.force_world = lift(found->force_world);
     f.point_body = lift(point_of(body_index_, found->point));
     f.coupling = coupling_on(attachment.face_set);
+    f.point_body.z() = couplings_[size_t(f.coupling)]->centroid().z();
     point_forces_.push_back(std::move(f));
   }
   const Eigen::MatrixXd& basis = motion_loads_.basis();

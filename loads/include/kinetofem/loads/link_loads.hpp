@@ -21,6 +21,11 @@
 //   * each drive's effort (torque) on its shaft face, each spring's force
 //     (tension k (L - L0) + c L', from the frame's body states) and each
 //     constant point force, at their points, through distributing couplings.
+// A point mass, a spring end or a point force acts at its body point (x, y)
+// at the z of its mount face's centroid: the planar model does not place it
+// along the pins, the face it is mounted on does (a casting held in the jaws
+// of a gripper built 245 mm out of the mechanism's plane is there, not at
+// z = 0); the vibration's point masses sit at the same place.
 // Out of the plane (force along z, moments about x and y: a part or a load
 // off the mid-plane z = 0) the planar model gives no reaction; loads_at hands
 // them to the part's revolute pins, split equally (a pin holds the moments
