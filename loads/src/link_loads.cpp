@@ -75,6 +75,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
               joint.name);
     mesh.face_set(attachment.face_set);  // throws naming the sets present
     a.coupling = coupling_on(attachment.face_set);
+    a.bore.axis_point_m.z() = couplings_[size_t(a.coupling)]->centroid().z();
     has_bearing_pressure_ = has_bearing_pressure_ || a.distribution == BoreLoad::BearingPressure;
     a.revolute = mech::joint_facts(joint.type).out_of_plane_pin;
     joints_.push_back(std::move(a));
@@ -215,7 +216,8 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
     const mech::JointFrame& jf = frame.joints.at(size_t(a.joint_index));
     const mech::Reaction& r = a.on_i ? jf.on_i : jf.on_j;
     const Eigen::Vector3d force = lift(r.force_body);
-    const Eigen::Vector3d point = R_T * (lift(r.point_world) - origin_world);
+    Eigen::Vector3d point = R_T * (lift(r.point_world) - origin_world);
+    point.z() = a.bore.axis_point_m.z();  // in the bore (header)
     const Eigen::Vector3d moment(0, 0, r.moment_Nm);
     if (a.distribution == BoreLoad::BearingPressure) {
       if (out.bearing_forces.size() == 0) out.bearing_forces = Eigen::VectorXd::Zero(3 * mesh.node_count());

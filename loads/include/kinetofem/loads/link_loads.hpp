@@ -21,11 +21,15 @@
 //   * each drive's effort (torque) on its shaft face, each spring's force
 //     (tension k (L - L0) + c L', from the frame's body states) and each
 //     constant point force, at their points, through distributing couplings.
-// A point mass, a spring end or a point force acts at its body point (x, y)
-// at the z of its mount face's centroid: the planar model does not place it
-// along the pins, the face it is mounted on does (a casting held in the jaws
-// of a gripper built 245 mm out of the mechanism's plane is there, not at
-// z = 0); the vibration's point masses sit at the same place.
+// A joint's reaction, a point mass, a spring end or a point force acts at its
+// body point (x, y) at the z of its face's centroid: the planar model does not
+// place it along the pins, the bore or the mount face does (a lever built
+// 175 mm out of the mechanism's plane takes its pin loads in its own bores,
+// and a casting held in the jaws of a gripper built 245 mm out is there, not
+// at z = 0), as in the elastic assembly's interfaces and the vibration's
+// point masses. A part in its own plane thus gets the planar loads in that
+// plane; what the offsets between the parts add out of the plane is the
+// elastic assembly's (pins as members).
 // Out of the plane (force along z, moments about x and y: a part or a load
 // off the mid-plane z = 0) the planar model gives no reaction; loads_at hands
 // them to the part's revolute pins, split equally (a pin holds the moments
