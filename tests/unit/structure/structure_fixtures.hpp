@@ -22,6 +22,7 @@
 //                  y0, A = centroid of y1); arm x in [-c, 0] (A = centroid of
 //                  x1, which also carries the chain; gripper and casting at
 //                  H = (-c, h) through x0).
+#include <array>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -182,6 +183,25 @@ std::string error_of(F&& f) {
     return e.what();
   }
   return "(no error)";
+}
+
+// A column frame along +y from y = y_foot: x in [-h/2, h/2], z in [-t/2, t/2]
+// (HEX20, `cells` along x, y, z), held on its foot face y0 (the ground's
+// part); its top face y1 (centroid (0, y_foot + L, 0)) carries the ground's
+// joints named in `attachments`. SI units.
+inline pipeline::Part held_column_part(loads::LinkDefinition attachments, double L, double h, double t,
+                                       std::array<int, 3> cells, double y_foot) {
+  testing::BoxMeshOptions box;
+  box.type = fem::ElementType::Hex20;
+  box.length_m = {h, L, t};
+  box.divisions = cells;
+  fem::Mesh mesh = testing::box_mesh(box);
+  mesh.nodes.col(0).array() -= 0.5 * h;
+  mesh.nodes.col(1).array() += y_foot;
+  mesh.nodes.col(2).array() -= 0.5 * t;
+  pipeline::Part part = mesh_part("frame", std::move(attachments), std::move(mesh), steel());
+  part.held_face = "y0";
+  return part;
 }
 
 }  // namespace kinetofem::structure::test

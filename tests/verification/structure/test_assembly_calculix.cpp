@@ -166,23 +166,6 @@ TEST(AssemblyCalculix, LeverChainWithRigidArmAndCompliantDriveMatchesCcx) { expe
 namespace kinetofem::structure {
 namespace {
 
-// A column along +y from y = y_foot (x in [-h/2, h/2], z in [-t/2, t/2]),
-// held on its foot y0; its top y1 carries the ground's joints.
-Part column_part(loads::LinkDefinition attachments, double L, double h, double t, std::array<int, 3> cells,
-                 double y_foot) {
-  testing::BoxMeshOptions box;
-  box.type = fem::ElementType::Hex20;
-  box.length_m = {h, L, t};
-  box.divisions = cells;
-  fem::Mesh mesh = testing::box_mesh(box);
-  mesh.nodes.col(0).array() -= 0.5 * h;
-  mesh.nodes.col(1).array() += y_foot;
-  mesh.nodes.col(2).array() -= 0.5 * t;
-  Part part = test::mesh_part("frame", std::move(attachments), std::move(mesh), test::steel());
-  part.held_face = "y0";
-  return part;
-}
-
 // The two-link arm (structure_fixtures.hpp) in motion (d'Alembert loads of
 // its kinematics at t = 0.2 s) on a column frame part held at its foot, its
 // elbow drive a torsional spring: the foundation as *BOUNDARY, the ground's
@@ -194,7 +177,7 @@ TEST(AssemblyCalculix, TwoLinkArmOnAColumnFrameMatchesCcx) {
   std::vector<Part> parts = test::two_link_parts(arm);
   pipeline::apply_mass_properties(model, parts, Log::quiet());
   const mech::Frame frame = mech::run_kinematics(mech::MultibodySystem(model), {0.0, 0.2, 0.5}).frames[1];
-  parts.push_back(column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
+  parts.push_back(test::held_column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
                               -0.5));
   AssemblyOptions options;
   options.drives = {{"d2", 3000.0}};

@@ -33,23 +33,6 @@
 namespace kinetofem::structure {
 namespace {
 
-// A column along +y from y = y_foot: x in [-h/2, h/2], z in [-t/2, t/2];
-// face y0 its foot, y1 its top (centroid (0, y_foot + L, 0)).
-pipeline::Part column_part(loads::LinkDefinition attachments, double L, double h, double t, std::array<int, 3> cells,
-                           double y_foot) {
-  testing::BoxMeshOptions box;
-  box.type = fem::ElementType::Hex20;
-  box.length_m = {h, L, t};
-  box.divisions = cells;
-  fem::Mesh mesh = testing::box_mesh(box);
-  mesh.nodes.col(0).array() -= 0.5 * h;
-  mesh.nodes.col(1).array() += y_foot;
-  mesh.nodes.col(2).array() -= 0.5 * t;
-  pipeline::Part part = test::mesh_part("frame", std::move(attachments), std::move(mesh), test::steel());
-  part.held_face = "y0";
-  return part;
-}
-
 TEST(ElasticAssemblyFramePart, ColumnTipDeflectionIsTimoshenkoBeamTheory) {
   const double L = 1.0, h = 0.05, t = 0.05, l = 0.3, P = 1000.0;
   mech::MultibodyModel m;
@@ -76,7 +59,7 @@ TEST(ElasticAssemblyFramePart, ColumnTipDeflectionIsTimoshenkoBeamTheory) {
   m.point_forces.push_back({"push", "link", "tip", {-P, 0.0}});
 
   const std::vector<pipeline::Part> parts = {
-      column_part({"frame", nullptr, {{"A", "y1"}}, {}, {{"d", "y1"}}}, L, h, t, {4, 40, 4}, 0.0)};
+      test::held_column_part({"frame", nullptr, {{"A", "y1"}}, {}, {{"d", "y1"}}}, L, h, t, {4, 40, 4}, 0.0)};
   const mech::Frame pose_frame = mech::run_kinematics(mech::MultibodySystem(m), {0.0}).frames.front();
   AssemblyOptions options;
   options.points = {{"tip", "link", "tip", ""}};
@@ -132,7 +115,7 @@ TEST(ElasticAssemblyFramePart, ColumnUnderTwoLinkArmAddsExactlyItsOwnContributio
   const PoseSolution without = rigid.solve(f0);
   // The ground as a column 0.5 m high under J1 and d1 (its top bore at the frame's origin).
   std::vector<pipeline::Part> parts = links;
-  parts.push_back(column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
+  parts.push_back(test::held_column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
                               -0.5));
   ElasticAssembly held(parts, m, options);
   const PoseSolution with = held.solve(f0);

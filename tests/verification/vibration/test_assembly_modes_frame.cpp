@@ -59,23 +59,6 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-// A column along +y from y = y_foot: x in [-h/2, h/2], z in [-t/2, t/2];
-// face y0 its foot (held), y1 its top (centroid (0, y_foot + L, 0)).
-pipeline::Part column_part(loads::LinkDefinition attachments, double L, double h, double t, std::array<int, 3> cells,
-                           double y_foot) {
-  testing::BoxMeshOptions box;
-  box.type = fem::ElementType::Hex20;
-  box.length_m = {h, L, t};
-  box.divisions = cells;
-  fem::Mesh mesh = testing::box_mesh(box);
-  mesh.nodes.col(0).array() -= 0.5 * h;
-  mesh.nodes.col(1).array() += y_foot;
-  mesh.nodes.col(2).array() -= 0.5 * t;
-  pipeline::Part part = test::mesh_part("frame", std::move(attachments), std::move(mesh), test::steel());
-  part.held_face = "y0";
-  return part;
-}
-
 struct ColumnWithTipMass {
   double L = 0.6, h = 0.05, t = 0.04;  // m: length, depth along x (in the plane), thickness along z
   double m = 0.0;                      // kg, the link (5 x the column's)
@@ -84,7 +67,7 @@ struct ColumnWithTipMass {
   std::vector<pipeline::Part> parts;
 
   ColumnWithTipMass() {
-    parts = {column_part({"frame", nullptr, {{"A", "y1"}}, {}, {{"d", "y1"}}}, L, h, t, {4, 24, 3}, 0.0)};
+    parts = {test::held_column_part({"frame", nullptr, {{"A", "y1"}}, {}, {{"d", "y1"}}}, L, h, t, {4, 24, 3}, 0.0)};
     m = 5.0 * parts[0].mass.mass_kg;
     model.name = "column with a tip mass";
     model.characteristic_length_m = L;
@@ -189,7 +172,7 @@ TEST(AssemblyModesFramePart, ReducedStaticsOfTwoLinkArmOnColumnEqualTheAssemblys
   mech::MultibodyModel m = test::two_link_arm(arm);
   std::vector<pipeline::Part> parts = test::two_link_parts(arm);
   pipeline::apply_mass_properties(m, parts, Log::quiet());
-  parts.push_back(column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
+  parts.push_back(test::held_column_part({"frame", nullptr, {{"J1", "y1"}}, {}, {{"d1", "y1"}}}, 0.5, 0.04, 0.04, {2, 12, 2},
                               -0.5));
   const std::vector<mech::Frame> frames = mech::run_kinematics(mech::MultibodySystem(m), {0.0, 0.2, 0.5}).frames;
 
