@@ -11,6 +11,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/meshes/geo_file_scan.hpp"
 #include "kinetofem/meshes/part_file.hpp"
+#include "kinetofem/testing/error_message.hpp"
 #include "mesh_test_helpers.hpp"
 
 namespace kinetofem::meshes {
@@ -19,15 +20,7 @@ namespace {
 using Kind = GeoCommand::Kind;
 using testing::TempDir;
 
-std::string message_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return {};
-}
+using kinetofem::testing::message_of;
 
 TEST(GeoCommands, CommentsStringsAndOptionsAreNotCommands) {
   const auto commands = geo_commands(R"(// SystemCall "rm -rf x"; Exit;

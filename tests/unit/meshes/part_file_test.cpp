@@ -21,6 +21,7 @@
 #include "kinetofem/meshes/gmsh_session.hpp"
 #include "kinetofem/meshes/msh_io.hpp"
 #include "kinetofem/meshes/part_file.hpp"
+#include "kinetofem/testing/error_message.hpp"
 #include "mesh_test_helpers.hpp"
 
 namespace kinetofem::meshes {
@@ -194,15 +195,7 @@ void expect_bore_set(const fem::Mesh& mesh, const std::string& name, double x_ax
   EXPECT_NEAR(area / (2 * M_PI * r * length), 1.0, 0.013) << name;
 }
 
-std::string message_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return {};
-}
+using kinetofem::testing::message_of;
 
 // ---- units and sizes -----------------------------------------------------------
 

@@ -18,6 +18,7 @@
 #include "kinetofem/meshes/gmsh_session.hpp"
 #include "kinetofem/meshes/part_file.hpp"
 #include "kinetofem/solver/element_traits.hpp"
+#include "kinetofem/testing/error_message.hpp"
 #include "mesh_test_helpers.hpp"
 
 namespace kinetofem::meshes {
@@ -56,15 +57,7 @@ PartFileOptions in_mm() {
   return part;
 }
 
-std::string message_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return {};
-}
+using kinetofem::testing::message_of;
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
