@@ -46,6 +46,16 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
   const mech::Body& body = model.bodies[size_t(body_index_)];
   gravity_world_ = lift(model.gravity);
   length_scale_ = std::max(1e-3, (mesh.nodes.colwise().maxCoeff() - mesh.nodes.colwise().minCoeff()).norm());
+  // The z of a face's centroid: where the loads through it act along the
+  // pins (header). A face centred on the mid-plane to within 1e-6 of the
+  // part's size lies on it: the unstructured mesh of a symmetric bore puts
+  // its centroid a few 1e-9 m off z = 0, a difference of discretisation,
+  // not of design, that would otherwise give every planar link spurious
+  // out-of-plane moments.
+  auto face_z = [&](int coupling) {
+    const double z = couplings_[size_t(coupling)]->centroid().z();
+    return std::abs(z) <= 1e-6 * length_scale_ ? 0.0 : z;
+  };
 
   for (const auto& attachment : link.joints) {
     Attached a;
@@ -75,7 +85,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
               joint.name);
     mesh.face_set(attachment.face_set);  // throws naming the sets present
     a.coupling = coupling_on(attachment.face_set);
-    a.bore.axis_point_m.z() = couplings_[size_t(a.coupling)]->centroid().z();
+    a.bore.axis_point_m.z() = face_z(a.coupling);
     has_bearing_pressure_ = has_bearing_pressure_ || a.distribution == BoreLoad::BearingPressure;
     a.revolute = mech::joint_facts(joint.type).out_of_plane_pin;
     joints_.push_back(std::move(a));
@@ -93,7 +103,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     require(found, "link '{}': the body carries no point mass '{}'", link.body,
             attachment.point_mass);
     m.coupling = coupling_on(attachment.face_set);
-    m.position_body.z() = couplings_[size_t(m.coupling)]->centroid().z();
+    m.position_body.z() = face_z(m.coupling);
     masses_.push_back(std::move(m));
   }
   for (const auto& attachment : link.drives) {
@@ -156,7 +166,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     s.on_i = sp.body_i == link.body;
     s.point_body = lift(s.on_i ? spring_point_i_[size_t(s.spring_index)] : spring_point_j_[size_t(s.spring_index)]);
     s.coupling = coupling_on(attachment.face_set);
-    s.point_body.z() = couplings_[size_t(s.coupling)]->centroid().z();
+    s.point_body.z() = face_z(s.coupling);
     springs_.push_back(std::move(s));
   }
   for (const auto& attachment : link.point_forces) {
@@ -170,7 +180,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     f.force_world = lift(found->force_world);
     f.point_body = lift(point_of(body_index_, found->point));
     f.coupling = coupling_on(attachment.face_set);
-    f.point_body.z() = couplings_[size_t(f.coupling)]->centroid().z();
+    f.point_body.z() = face_z(f.coupling);
     point_forces_.push_back(std::move(f));
   }
   const Eigen::MatrixXd& basis = motion_loads_.basis();
