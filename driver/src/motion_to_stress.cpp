@@ -140,6 +140,10 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
         write_part_fatigue(writer.body(parts[k].body()), run.fatigue.back());
         histories[k] = {};  // done with it: free the memory
       }
+      if (parts_in_several_planes(c.parts))
+        log.info("fatigue: WARNING: the parts sit in several planes; these lives come from the planar per-part stress, "
+                 "which lacks the moments of the offsets between the planes (the elastic assembly's stress can be "
+                 "much higher): they may be unconservative");
       return 0;
     });
   in_stage(c, "the histories cannot be written", [&] {

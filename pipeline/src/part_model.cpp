@@ -108,14 +108,17 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
   for (auto& part : parts) part.attachments.model = &part.model;
   // Parts in their own planes: the per-part stage is planar, the elastic
   // assembly is not; the user should know which result carries what.
-  const bool planes_differ = std::any_of(specs.begin(), specs.end(), [&](const PartSpec& spec) {
-    return spec.placement.offset_m.z() != specs.front().placement.offset_m.z();
-  });
-  if (planes_differ)
+  if (parts_in_several_planes(specs))
     log.info("  parts in their own planes (offset_mm z differs): each part's stress over the motion uses the planar "
              "multibody reactions; the out-of-plane moments at pins between bores at different z are carried by the "
              "elastic assembly (assembly.enabled: its fields and its pins' histories, docs/elastic_assembly.md)");
   return parts;
+}
+
+bool parts_in_several_planes(const std::vector<PartSpec>& specs) {
+  return std::any_of(specs.begin(), specs.end(), [&](const PartSpec& spec) {
+    return spec.placement.offset_m.z() != specs.front().placement.offset_m.z();
+  });
 }
 
 void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log,

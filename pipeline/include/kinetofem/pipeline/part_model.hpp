@@ -107,4 +107,9 @@ void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>&
 // joint, the face set and the distance.
 void check_part_against_model(const Part& part, const mech::MultibodyModel& model);
 
+// Whether the parts sit in more than one plane (their placements' z differ):
+// then the per-part stage, which is planar, lacks the moments of the offsets
+// between the planes, which only the elastic assembly carries.
+bool parts_in_several_planes(const std::vector<PartSpec>& specs);
+
 }  // namespace kinetofem::pipeline
