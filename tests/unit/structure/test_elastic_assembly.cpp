@@ -117,7 +117,8 @@ TEST(ElasticAssembly, PartsSetUpOneAtATimeWithLentFactorsFreedAfterwardsGiveTheS
     supported.back().supports = fem::three_two_one_support(part.model.mesh, all);
   }
   std::vector<std::unique_ptr<fem::LinearStaticAnalysis>> factors;
-  for (const auto& model : supported) factors.push_back(std::make_unique<fem::LinearStaticAnalysis>(model, Log::quiet()));
+  const Log quiet = Log::quiet();
+  for (const auto& model : supported) factors.push_back(std::make_unique<fem::LinearStaticAnalysis>(model, quiet));
   ElasticAssembly assembly(a.parts, a.model, AssemblyOptions{}, Log::quiet(), PartsLentOneByOne{});
   EXPECT_FALSE(assembly.is_set_up());
   EXPECT_NE(error_of([&] { assembly.solve(a.frames); }).find("not set up yet"), std::string::npos);

@@ -204,7 +204,8 @@ TEST(AssemblyModesFramePart, HeldReductionOnASharedFactorEqualsTheOwnFactorReduc
   options.highest_frequency_of_interest_hz = 200.0;
   options.eigen.label = "clamped beam";
   const vibration::CraigBamptonModel own = vibration::reduce_craig_bampton(clamped, tip, options);
-  fem::LinearStaticAnalysis analysis(clamped, Log::quiet());
+  const Log quiet = Log::quiet();
+  fem::LinearStaticAnalysis analysis(clamped, quiet);
   const vibration::CraigBamptonModel held = vibration::reduce_held_craig_bampton(analysis, tip, options);
   ASSERT_EQ(held.mode_count, own.mode_count);
   ASSERT_GT(held.mode_count, 0);
@@ -232,7 +233,7 @@ TEST(AssemblyModesFramePart, HeldReductionOnASharedFactorEqualsTheOwnFactorReduc
   free.supports.clear();
   fem::StaticSolverOptions deferred;
   deferred.defer_factorization = true;
-  fem::LinearStaticAnalysis unsupported(free, Log::quiet(), deferred);
+  fem::LinearStaticAnalysis unsupported(free, quiet, deferred);
   EXPECT_THROW(
       {
         try {

@@ -55,6 +55,7 @@ class Log {
 class Progress {
  public:
   Progress(const Log& log, std::string task, long total, double interval_s = 2.0);
+  Progress(Log&&, std::string, long, double = 2.0) = delete;  // the log would dangle
   void advance(long done);  // `done` items of `total` are finished
   void finish();
 

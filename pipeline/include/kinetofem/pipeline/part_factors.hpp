@@ -66,6 +66,9 @@ class PartFactors {
   // positive definite) name the part.
   PartFactors(const std::vector<Part>& parts, const fem::StaticSolverOptions& solver, FactorStages stages,
               std::string label, const Log& log);
+  // Keeps references to the parts and the log: temporaries would dangle.
+  PartFactors(std::vector<Part>&&, const fem::StaticSolverOptions&, FactorStages, std::string, const Log&) = delete;
+  PartFactors(const std::vector<Part>&, const fem::StaticSolverOptions&, FactorStages, std::string, Log&&) = delete;
   PartFactors(const PartFactors&) = delete;
   PartFactors& operator=(const PartFactors&) = delete;
   ~PartFactors();

@@ -46,6 +46,7 @@ double steady_clock_seconds();
 class PcgProgress {
  public:
   PcgProgress(const Log& log, double interval_s, SecondsClock clock = steady_clock_seconds);
+  PcgProgress(Log&&, double, SecondsClock = steady_clock_seconds) = delete;  // the log would dangle
 
   // `label` names the solve in the line ("AMG-PCG column 3/37"); `target` is
   // the relative residual at which it stops, `initial_residual` the one at

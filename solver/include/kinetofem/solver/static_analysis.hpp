@@ -58,6 +58,12 @@ class LinearStaticAnalysis {
   LinearStaticAnalysis(const FeModel& model, const Log& log, CholmodOptions options = {});
   // Solver chosen by options.method.
   LinearStaticAnalysis(const FeModel& model, const Log& log, const StaticSolverOptions& options);
+  // The analysis keeps a reference to the log (and the model): a temporary
+  // would dangle, so passing one does not compile.
+  LinearStaticAnalysis(const FeModel&, Log&&, CholmodOptions = {}) = delete;
+  LinearStaticAnalysis(const FeModel&, Log&&, const StaticSolverOptions&) = delete;
+  LinearStaticAnalysis(FeModel&&, const Log&, CholmodOptions = {}) = delete;
+  LinearStaticAnalysis(FeModel&&, const Log&, const StaticSolverOptions&) = delete;
 
   // The numeric factorization deferred by StaticSolverOptions::defer_factorization;
   // a no-op when it is done or the iterative path was taken. Safe to call for
