@@ -6,6 +6,8 @@
 #include "kinetofem/app/fatigue_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/vibration_keys.hpp"
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
 
 namespace kinetofem::app {
 
@@ -22,6 +24,12 @@ void read_shared_motion_keys(const CaseFile& c, const RunOptions& options, const
   run_case.assembly = read_assembly(bodies);
   run_case.vibration = read_vibration(c, run_case.assembly);
   run_case.fatigue = read_fatigue(c, bodies);
+  // Parts in several planes: the moments between the planes are only in the
+  // elastic assembly's 3D joint loads, which their fatigue check then uses.
+  if (run_case.fatigue && !run_case.assembly && pipeline::parts_in_several_planes(run_case.parts))
+    fail("{} = true: the parts sit in several planes (their offset_mm z differs), so their fatigue needs the elastic "
+         "assembly's 3D joint loads (the moments between the planes): set assembly.enabled = true",
+         c.where("fatigue.enabled"));
   run_case.material = read_material(c);
   run_case.mesh = read_part_mesh_options(c, options.output_dir);
   run_case.stress = read_stress_options(c);

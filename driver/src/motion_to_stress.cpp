@@ -68,9 +68,16 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
                            c.assembly.has_value());
     return 0;
   });
+  // Parts in several planes: the moments between the planes are in the
+  // elastic assembly's 3D joint loads, not in the per-part stage's planar
+  // reactions, so the fatigue takes each part's stress from the assembly.
+  const bool fatigue_from_assembly = c.fatigue && parts_in_several_planes(c.parts);
   if (c.fatigue)
     in_stage(c, "a fatigue detail does not fit the parts", [&] {
       check_fatigue_details(*c.fatigue, parts);
+      require(!fatigue_from_assembly || c.assembly,
+              "the parts sit in several planes (their offset_mm z differs): their fatigue needs the elastic "
+              "assembly's 3D joint loads (the moments between the planes); set assembly.enabled = true");
       return 0;
     });
 
@@ -113,18 +120,32 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     assembly_options = *c.assembly;
     assembly_options.solver = c.stress.solver;
     assembly_options.field_steps = c.stress.callback_steps;
+    assembly_options.keep_part_stress = fatigue_from_assembly;
     assembly = in_stage(c, "the elastic assembly cannot be built", [&] {
       return std::optional<structure::ElasticAssembly>(
           begin_elastic_assembly(parts, run.model, assembly_options,
                                  run.motion.frames.size() + (run.static_pose ? 1 : 0), *factors, log));
     });
   }
-  // The stress at every output time, kept for the fatigue stage (when asked).
+  // The stress at every output time, kept for the fatigue stage (when asked),
+  // from the per-part stage or the elastic assembly.
   std::vector<PartStressHistory> histories(c.fatigue ? parts.size() : 0);
+  const auto assess_fatigue = [&] {
+    in_stage(c, "the fatigue check cannot be done or written", [&] {
+      log.info("fatigue: {} parts over {} output times (one work cycle); stress: {}", parts.size(),
+               run.motion.frames.size(), describe(histories.front().source));
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        run.fatigue.push_back(assess_part_fatigue(parts[k], histories[k], *c.fatigue, log));
+        write_part_fatigue(writer.body(parts[k].body()), run.fatigue.back());
+        histories[k] = {};  // done with it: free the memory
+      }
+      return 0;
+    });
+  };
   for (std::size_t k = 0; k < parts.size(); ++k) {
     run.parts.push_back(in_stage(c, "the stress of the parts cannot be computed or written", [&] {
       return analyse_part_with_factors(k, parts, run.model, run.motion.frames, run.static_pose, writer, c.stress, log,
-                                       *factors, c.fatigue ? &histories[k] : nullptr);
+                                       *factors, c.fatigue && !fatigue_from_assembly ? &histories[k] : nullptr);
     }));
     if (assembly)
       in_stage(c, "the elastic assembly cannot be solved or written", [&] {
@@ -132,20 +153,7 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
         return 0;
       });
   }
-  if (c.fatigue)
-    in_stage(c, "the fatigue check cannot be done or written", [&] {
-      log.info("fatigue: {} parts over {} output times (one work cycle)", parts.size(), run.motion.frames.size());
-      for (std::size_t k = 0; k < parts.size(); ++k) {
-        run.fatigue.push_back(assess_part_fatigue(parts[k], histories[k], *c.fatigue, log));
-        write_part_fatigue(writer.body(parts[k].body()), run.fatigue.back());
-        histories[k] = {};  // done with it: free the memory
-      }
-      if (parts_in_several_planes(c.parts))
-        log.info("fatigue: WARNING: the parts sit in several planes; these lives come from the planar per-part stress, "
-                 "which lacks the moments of the offsets between the planes (the elastic assembly's stress can be "
-                 "much higher): they may be unconservative");
-      return 0;
-    });
+  if (c.fatigue && !fatigue_from_assembly) assess_fatigue();
   in_stage(c, "the histories cannot be written", [&] {
     write_mechanism_histories(writer, run.model, run.motion, c.tracked_points);
     return 0;
@@ -155,9 +163,11 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
              run.static_pose ? " + the static study" : "");
     run.assembly = in_stage(c, "the elastic assembly cannot be solved or written", [&] {
       return analyse_assembly_with_factors(*assembly, parts, run.model, run.motion.frames, run.static_pose, writer,
-                                           assembly_options, log, *factors);
+                                           assembly_options, log, *factors,
+                                           fatigue_from_assembly ? &histories : nullptr);
     });
   }
+  if (fatigue_from_assembly) assess_fatigue();
   if (c.vibration) {
     log.info("vibration: the modes of the elastic assembly at {} output times{}", run.motion.frames.size(),
              run.static_pose ? " + the static pose" : "");

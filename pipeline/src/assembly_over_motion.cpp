@@ -66,6 +66,8 @@ struct AssemblyRecorder {
   std::vector<std::string> chain_names, drive_names;
   std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
   std::vector<post::FieldMatrix> pin_bending, pin_shear, pin_deflection;  // per elastic pin (summary.pins order)
+  // Per part, its stress at every output time (AssemblyOptions::keep_part_stress), or none.
+  std::vector<PartStressHistory>* stress_histories = nullptr;
 
   AssemblyRecorder(const std::vector<structure::Part>& parts_, const mech::MultibodyModel& model,
                    post::ResultsWriter& writer_, const AssemblyOptions& options_, size_t output_times,
@@ -152,6 +154,21 @@ struct AssemblyRecorder {
         if (field.von_mises_pa(i) > e.max_vm(i)) e.max_vm(i) = field.von_mises_pa(i), e.step_vm(i, 0) = fem::Index(k);
       }
       summary.parts[p].max_von_mises_pa = std::max(summary.parts[p].max_von_mises_pa, field.von_mises_pa.maxCoeff());
+      if (stress_histories) record_part_stress(field, (*stress_histories)[p], k);
+    }
+  }
+
+  // The part's stress tensor at output time k into its history: the
+  // coefficients of its stress patterns (superposed loads) or the field.
+  void record_part_stress(const PartField& field, PartStressHistory& history, size_t k) const {
+    const Eigen::Index t = Eigen::Index(k), times = Eigen::Index(T);
+    if (field.stress_coefficients.size() > 0) {
+      if (history.coefficients.cols() != times) history.coefficients.resize(field.stress_coefficients.size(), times);
+      history.coefficients.col(t) = field.stress_coefficients;
+    } else {
+      require(field.stress_pa.size() > 0, "elastic assembly: part '{}' kept no stress (keep_part_stress)", field.body);
+      if (history.step_stress_pa.cols() != times) history.step_stress_pa.resize(field.stress_pa.size(), times);
+      history.step_stress_pa.col(t) = field.stress_pa;
     }
   }
 
@@ -338,12 +355,22 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
                                              const std::vector<mech::Frame>& motion,
                                              const std::optional<mech::Frame>& static_pose,
                                              post::ResultsWriter& writer, const AssemblyOptions& options,
-                                             const Log& log) {
+                                             const Log& log, std::vector<PartStressHistory>* stress_histories) {
   require(!motion.empty(), "elastic assembly: no output times to analyse");
   require(assembly.is_set_up(), "elastic assembly: not every part is set up (ElasticAssembly::set_up_part)");
+  require(!stress_histories || options.keep_part_stress,
+          "elastic assembly: the parts' stress histories need keep_part_stress in the assembly's options");
   AssemblySummary summary;
   AssemblyRecorder recorder(parts, model, writer, options, motion.size(), summary);
+  if (stress_histories) {
+    stress_histories->assign(parts.size(), PartStressHistory{.source = StressHistorySource::ElasticAssembly});
+    recorder.stress_histories = stress_histories;
+  }
   solve_motion_in_blocks(assembly, motion, log, recorder);
+  if (stress_histories)
+    for (size_t p = 0; p < parts.size(); ++p)
+      if ((*stress_histories)[p].superposed())
+        (*stress_histories)[p].pattern_stress_pa = assembly.stress_patterns(parts[p].body());
   if (!summary.pins.empty())
     log.info(
         "  parts in their own planes ({} pin(s) between bores at different z): the per-part stress above uses the "

@@ -72,9 +72,10 @@ AssemblySummary analyse_assembly_with_factors(structure::ElasticAssembly& assemb
                                               const mech::MultibodyModel& model, const std::vector<mech::Frame>& motion,
                                               const std::optional<mech::Frame>& static_pose,
                                               post::ResultsWriter& writer, const structure::AssemblyOptions& options,
-                                              const Log& log, PartFactors& factors) {
+                                              const Log& log, PartFactors& factors,
+                                              std::vector<PartStressHistory>* stress_histories) {
   AssemblySummary summary =
-      analyse_assembly_over_motion(assembly, parts, model, motion, static_pose, writer, options, log);
+      analyse_assembly_over_motion(assembly, parts, model, motion, static_pose, writer, options, log, stress_histories);
   factors.done_all(FactorUser::Assembly);
   return summary;
 }

@@ -151,6 +151,7 @@ PartFatigue assess_part_fatigue(const Part& part, const PartStressHistory& histo
   r.design_cycles = settings.design_cycles;
   r.cycle_rate_per_s = settings.cycle_rate_per_s;
   r.superposed = history.superposed();
+  r.stress_source = history.source;
   r.planes_searched = int(planes.normals.rows());
   r.damage_per_cycle.resize(nodes);
   r.life_cycles.resize(nodes);
@@ -264,6 +265,7 @@ std::string format_fatigue_table(const std::vector<PartFatigue>& parts) {
                        life_text(p.min_life_cycles, p.min_life_s), p.max_utilization,
                        p.design_cycles * p.max_damage_per_cycle);
   }
+  out += fmt::format("  stress: {}\n", describe(parts.front().stress_source));
   out += "  u: utilization (the stress ranges divided by u give a damage of 1 over the service life); critical node: "
          "largest damage, or largest u where no range reaches the cut-off limit\n";
   for (const auto& p : parts) {

@@ -111,7 +111,8 @@ std::vector<Part> build_part_models(const std::vector<PartSpec>& specs, const fe
   if (parts_in_several_planes(specs))
     log.info("  parts in their own planes (offset_mm z differs): each part's stress over the motion uses the planar "
              "multibody reactions; the out-of-plane moments at pins between bores at different z are carried by the "
-             "elastic assembly (assembly.enabled: its fields and its pins' histories, docs/elastic_assembly.md)");
+             "elastic assembly (assembly.enabled: its fields, its pins' histories and the fatigue check's stress, "
+             "docs/elastic_assembly.md)");
   return parts;
 }
 

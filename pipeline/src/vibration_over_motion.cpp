@@ -391,6 +391,7 @@ VibrationSummary analyse_vibration_over_motion(const std::vector<structure::Part
   // reduced model).
   AssemblyOptions structure_options = assembly_options;
   structure_options.recover_stress = false;
+  structure_options.keep_part_stress = false;
   structure_options.superpose_loads = false;
   structure_options.unit_load_split = false;
   structure_options.field_steps.clear();

@@ -498,6 +498,8 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
     : log(l), options(std::move(o)), model(m) {
   require(factorized.empty() || factorized.size() == given.size(),
           "elastic assembly: {} factorizations given for {} parts", factorized.size(), given.size());
+  require(!options.keep_part_stress || options.recover_stress,
+          "elastic assembly: keeping the parts' stress needs their stress recovered (recover_stress)");
   Stopwatch clock;
   system = std::make_unique<mech::MultibodySystem>(model);
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
@@ -898,7 +900,14 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
       field.max_displacement_m = field.displacement_m.rowwise().norm().maxCoeff(&field.max_displacement_node);
       if (options.recover_stress && !stress_from_patterns) {
         const fem::DisplacementField ue = Eigen::Map<const fem::DisplacementField>(elastic.col(f).data(), N, 3);
-        field.von_mises_pa = fem::recover_nodal_stress(mesh, fem::element_materials(part.supported), ue).von_mises_pa;
+        fem::NodalStress recovered = fem::recover_nodal_stress(mesh, fem::element_materials(part.supported), ue);
+        field.von_mises_pa = std::move(recovered.von_mises_pa);
+        if (options.keep_part_stress)
+          field.stress_pa = Eigen::Map<const Eigen::VectorXd>(recovered.stress_pa.data(), recovered.stress_pa.size());
+      }
+      if (options.keep_part_stress && stress_from_patterns) {
+        field.stress_coefficients.resize(lambda.rows() + coefficients[p].rows());
+        field.stress_coefficients << lambda.col(f), coefficients[p].col(f);
       }
       PoseSolution& out = poses[size_t(f)];
       if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
@@ -1736,6 +1745,21 @@ Eigen::MatrixXd ElasticAssembly::flexibility(const std::string& body) const {
   impl_->require_set_up();
   for (const auto& p : impl_->parts)
     if (p->body == body) return p->F;
+  fail("elastic assembly: body '{}' has no elastic part", body);
+}
+
+Eigen::MatrixXd ElasticAssembly::stress_patterns(const std::string& body) const {
+  impl_->require_set_up();
+  for (const auto& p : impl_->parts)
+    if (p->body == body) {
+      require(p->superposed && impl_->options.recover_stress,
+              "elastic assembly: part '{}' has no stress patterns (its loads are not superposed or its stress is not "
+              "recovered)",
+              body);
+      Eigen::MatrixXd out(p->SG.rows(), p->SG.cols() + p->Sp.cols());
+      out << p->SG, p->Sp;
+      return out;
+    }
   fail("elastic assembly: body '{}' has no elastic part", body);
 }
 

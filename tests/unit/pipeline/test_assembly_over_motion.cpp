@@ -14,6 +14,8 @@
 #include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/pipeline/histories.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
+#include "kinetofem/pipeline/part_fatigue.hpp"
+#include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/pipeline/assembly_over_motion.hpp"
 #include "../structure/structure_fixtures.hpp"
@@ -133,6 +135,85 @@ TEST(AssemblyOverMotion, NoPartIsAnErrorBeforeAnythingIsWritten) {
   const std::string m = test::error_of(
       [&] { analyse_assembly_over_motion({}, model, motion.frames, std::nullopt, writer, lever_chain_options(), Log::quiet()); });
   EXPECT_NE(m.find("the linkage has no part"), std::string::npos) << m;
+}
+
+// The largest difference of two parts' stress histories over every node and
+// output time, relative to the largest stress of the second.
+double history_mismatch(const PartStressHistory& a, const PartStressHistory& b) {
+  double diff = 0.0, peak = 0.0;
+  Eigen::MatrixXd ha, hb;
+  for (Eigen::Index n = 0; n < b.nodes(); ++n) {
+    a.node_history(n, ha);
+    b.node_history(n, hb);
+    diff = std::max(diff, (ha - hb).cwiseAbs().maxCoeff());
+    peak = std::max(peak, hb.cwiseAbs().maxCoeff());
+  }
+  return diff / peak;
+}
+
+// The lever-chain lies in one plane (box parts symmetric about z = 0, masses
+// at z = 0) and is statically determinate: the assembly's joint loads are the
+// multibody reactions (docs/elastic_assembly.md), so each part's stress in
+// the assembly is the per-part stage's (the same loads on the same mesh), at
+// every node and output time, superposed or pose by pose; and so is the
+// fatigue damage computed from it.
+TEST(AssemblyOverMotion, PartStressHistoriesEqualThePerPartStagesOnAPlanarDeterminateLinkage) {
+  const mech::ManipulatorDefinition def = test::lever_chain_definition();
+  mech::MultibodyModel model = mech::make_manipulator_model(def);
+  const std::vector<pipeline::Part> parts = test::lever_chain_parts(def, test::steel());
+  pipeline::apply_mass_properties(model, parts, Log::quiet());
+  const mech::Results motion = mech::run_kinematics(mech::MultibodySystem(model), {0.0, 0.4, 0.8, 1.2, 1.6, 2.0});
+  const fs::path dir = fs::temp_directory_path() / fmt::format("kinetofem_assembly_history_{}", ::getpid());
+  fs::create_directories(dir);
+  post::ResultsWriter writer(dir / "history.h5", {});
+  pipeline::write_mechanism_histories(writer, model, motion);
+  std::vector<PartStressHistory> per_part(parts.size());
+  for (size_t p = 0; p < parts.size(); ++p)
+    analyse_part_over_motion(parts[p], model, motion.frames, std::nullopt, writer, {}, Log::quiet(), nullptr,
+                             &per_part[p]);
+  FatigueSettings fatigue;
+  fatigue.detail_category_mpa = 36.0;
+  fatigue.design_cycles = 1e9;  // some ranges above the cut-off: a damage to compare
+  for (const bool superposed : {true, false}) {
+    AssemblyOptions options = lever_chain_options();
+    options.superpose_loads = superposed;
+    options.keep_part_stress = true;
+    ElasticAssembly assembly(parts, model, options, Log::quiet());
+    std::vector<PartStressHistory> from_assembly;
+    post::ResultsWriter assembly_writer(dir / fmt::format("assembly_{}.h5", superposed), {});
+    pipeline::write_mechanism_histories(assembly_writer, model, motion);
+    analyse_assembly_over_motion(assembly, parts, model, motion.frames, std::nullopt, assembly_writer, options,
+                                 Log::quiet(), &from_assembly);
+    ASSERT_EQ(from_assembly.size(), parts.size());
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const PartStressHistory& h = from_assembly[p];
+      EXPECT_EQ(h.source, StressHistorySource::ElasticAssembly);
+      EXPECT_EQ(h.superposed(), superposed) << parts[p].body();
+      ASSERT_EQ(h.times(), Eigen::Index(motion.frames.size()));
+      ASSERT_EQ(h.nodes(), parts[p].model.mesh.node_count());
+      EXPECT_LT(history_mismatch(h, per_part[p]), 1e-8) << parts[p].body() << (superposed ? " superposed" : " pose by pose");
+      const PartFatigue a = assess_part_fatigue(parts[p], h, fatigue, Log::quiet());
+      const PartFatigue b = assess_part_fatigue(parts[p], per_part[p], fatigue, Log::quiet());
+      EXPECT_EQ(a.stress_source, StressHistorySource::ElasticAssembly);
+      EXPECT_NEAR(a.max_utilization, b.max_utilization, 1e-6 * b.max_utilization) << parts[p].body();
+      EXPECT_GT(b.max_utilization, 0.0);
+    }
+  }
+  fs::remove_all(dir);
+}
+
+TEST(AssemblyOverMotion, StressHistoriesNeedTheAssemblyToKeepThePartsStress) {
+  const StageRun r = run_stage("no_kept_stress");
+  ElasticAssembly assembly(r.parts, r.model, lever_chain_options(), Log::quiet());
+  post::ResultsWriter writer(r.file.parent_path() / "second.h5", {});
+  pipeline::write_mechanism_histories(writer, r.model, r.motion);
+  std::vector<PartStressHistory> histories;
+  const std::string m = test::error_of([&] {
+    analyse_assembly_over_motion(assembly, r.parts, r.model, r.motion.frames, std::nullopt, writer,
+                                 lever_chain_options(), Log::quiet(), &histories);
+  });
+  EXPECT_NE(m.find("keep_part_stress"), std::string::npos) << m;
+  fs::remove_all(r.file.parent_path());
 }
 
 }  // namespace

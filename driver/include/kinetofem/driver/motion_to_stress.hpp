@@ -23,11 +23,16 @@
 //                                      interface and load-pattern solves on
 //                                      the same factor, freed after its last user
 //        assess_part_fatigue           per part (when asked): rainflow, Miner,
-//                                      life per node over the work cycle
+//                                      life per node over the work cycle, on
+//                                      the per-part stage's stress
 //     7. write_mechanism_histories     bodies, joints, drives, chains, points
 //     8. analyse_assembly_with_factors the linkage as one elastic structure
 //                                      (when asked): total deformation, the
 //                                      tracked points' deflection and split
+//        assess_part_fatigue           instead of in step 6 when the parts sit
+//                                      in several planes: on the assembly's
+//                                      stress (its 3D joint loads; the
+//                                      assembly is then required)
 //        analyse_vibration_with_factors the assembly's modes in every pose and
 //                                      the tracked points' vibration (when
 //                                      asked; needs step 8); each gives its

@@ -37,6 +37,7 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_stress_history.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 #include "kinetofem/structure/part.hpp"
@@ -108,13 +109,17 @@ AssemblySummary analyse_assembly_over_motion(const std::vector<structure::Part>&
 // The same on an assembly made (and set up) by the caller, e.g. one whose
 // parts were set up one at a time with the factors lent by PartFactors
 // (begin_elastic_assembly, set_up_assembly_part). `options` as given to it
-// (points, field steps).
+// (points, field steps). `stress_histories` (optional; the assembly made
+// with options.keep_part_stress): per part (in order) its stress at every
+// output time in the assembly, the 3D joint loads included, for the fatigue
+// stage (part_fatigue.hpp) where the parts sit in several planes.
 AssemblySummary analyse_assembly_over_motion(structure::ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                                              const mech::MultibodyModel& model,
                                              const std::vector<mech::Frame>& motion,
                                              const std::optional<mech::Frame>& static_pose,
                                              post::ResultsWriter& writer, const structure::AssemblyOptions& options,
-                                             const Log& log);
+                                             const Log& log,
+                                             std::vector<PartStressHistory>* stress_histories = nullptr);
 
 // The options analyse_assembly_over_motion runs its assembly with for this
 // many poses (output times + the static study): unit-load superposition only

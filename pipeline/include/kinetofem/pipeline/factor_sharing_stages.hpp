@@ -68,7 +68,8 @@ AssemblySummary analyse_assembly_with_factors(structure::ElasticAssembly& assemb
                                               const mech::MultibodyModel& model, const std::vector<mech::Frame>& motion,
                                               const std::optional<mech::Frame>& static_pose,
                                               post::ResultsWriter& writer, const structure::AssemblyOptions& options,
-                                              const Log& log, PartFactors& factors);
+                                              const Log& log, PartFactors& factors,
+                                              std::vector<PartStressHistory>* stress_histories = nullptr);
 
 // analyse_vibration_over_motion on the same assembly, whose parts' factors
 // `factors` still holds, then every factor given back (FactorUser::Vibration).

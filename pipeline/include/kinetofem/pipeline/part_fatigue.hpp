@@ -91,6 +91,7 @@ struct PartFatigue {
   double max_damage_per_cycle = 0, min_life_cycles = 0, min_life_s = 0, max_utilization = 0;
   int planes_searched = 0;
   bool superposed = false;
+  StressHistorySource stress_source = StressHistorySource::FreeBodyPart;
   double seconds = 0;
 };
 

@@ -18,7 +18,23 @@
 
 namespace kinetofem::pipeline {
 
+// Where a part's stress history comes from: the per-part stage (the part as
+// a free body under the planar multibody reactions, part_stress.hpp) or the
+// elastic assembly (its 3D joint loads, the moments between parts in
+// several planes included; assembly_over_motion.hpp).
+enum class StressHistorySource { FreeBodyPart, ElasticAssembly };
+
+// "the part as a free body (planar reactions)", "the elastic assembly (3D joint loads)".
+inline const char* describe(StressHistorySource source) {
+  switch (source) {
+    case StressHistorySource::FreeBodyPart: return "the part as a free body under the planar multibody reactions";
+    case StressHistorySource::ElasticAssembly: return "the elastic assembly (its 3D joint loads)";
+  }
+  return "?";
+}
+
 struct PartStressHistory {
+  StressHistorySource source = StressHistorySource::FreeBodyPart;
   Eigen::MatrixXd pattern_stress_pa;  // 6 N x m (superposition), else empty
   Eigen::MatrixXd coefficients;       // m x T (superposition), else empty
   Eigen::MatrixXd step_stress_pa;     // 6 N x T (step by step), else empty

@@ -156,6 +156,11 @@ struct AssemblyOptions {
   // Pivots below this fraction of the largest (scaled system) count as zero.
   double rank_tolerance = 1e-10;
   bool recover_stress = true;  // von Mises field of every part
+  // Per part and pose, its nodal stress tensor too (PartField::stress_pa, or
+  // with superposed loads PartField::stress_coefficients of the part's
+  // stress_patterns()), e.g. for a fatigue check on the assembly's stress
+  // (parts in several planes). Needs recover_stress.
+  bool keep_part_stress = false;
   // Per tracked point: its compliance (unit forces at it) and the split of
   // its displacement into the contributions of the parts, chains and
   // compliant drives (the unit-load method; three more right-hand sides of
@@ -188,6 +193,11 @@ struct PartField {
   std::string body;
   fem::DisplacementField displacement_m;  // N x 3, world axes, from the rigid configuration
   Eigen::VectorXd von_mises_pa;           // N (empty unless recover_stress)
+  // AssemblyOptions::keep_part_stress (else empty): the nodal stress tensor
+  // (Pa, body axes, node-major Voigt as fem::StressField, 6N) is
+  // ElasticAssembly::stress_patterns(body) * stress_coefficients when the
+  // part's loads are superposed, else stress_pa itself.
+  Eigen::VectorXd stress_coefficients, stress_pa;
   double max_displacement_m = 0.0;
   fem::Index max_displacement_node = 0;
 };
@@ -390,6 +400,11 @@ class ElasticAssembly {
   // Flexibility G^T K_s^-1 G of the elastic part of `body` over its
   // interfaces (interfaces() order), body axes; 6m x 6m.
   Eigen::MatrixXd flexibility(const std::string& body) const;
+  // The nodal stress (Pa, body axes, 6N rows as PartField::stress_pa) of the
+  // part of `body` under each unit interface load and each load pattern,
+  // [S_G S_p] (6N x (6m + p)): the patterns of PartField::stress_coefficients.
+  // Error when its loads are not superposed or its stress is not recovered.
+  Eigen::MatrixXd stress_patterns(const std::string& body) const;
   const AssemblyStatistics& statistics() const;
 
  private:
