@@ -12,6 +12,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/pipeline/part_factors.hpp"  // kMinSuperposedPoses
+#include "kinetofem/pipeline/part_model.hpp"    // write_solid_field
 #include "kinetofem/postproc/results_layout.hpp"
 
 namespace kinetofem::pipeline {
@@ -89,6 +90,7 @@ struct AssemblyRecorder {
     for (size_t p = 0; p < parts.size(); ++p) {
       const fem::Mesh& mesh = parts[p].model.mesh;
       post::BodyWriter& w = writer.add_body(post::layout::kAssemblyBodyPrefix + parts[p].body(), mesh);
+      write_solid_field(w, mesh);
       w.begin_series({{.name = post::layout::kPosition, .units = "m", .components = 3, .component_names = post::kVectorComponents,
                        .geometry = true},
                       {post::layout::kDisplacement, "m", 3, post::kVectorComponents},
@@ -375,8 +377,9 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
     log.info(
         "  parts in their own planes ({} pin(s) between bores at different z): the per-part stress above uses the "
         "planar multibody reactions (without the moments of the offsets between bores); the elastic assembly carries "
-        "them (its fields {}<body>, its pins' histories {}<joint>.*)",
-        summary.pins.size(), post::layout::kAssemblyBodyPrefix, post::layout::kAssemblyPinPrefix);
+        "them (its fields {}<body>, its pins' histories {}<joint>.*{})",
+        summary.pins.size(), post::layout::kAssemblyBodyPrefix, post::layout::kAssemblyPinPrefix,
+        stress_histories ? "; the fatigue check takes each part's stress from it" : "");
   const bool determinate = summary.indeterminacy.in_plane == 0;
   if (determinate && summary.worst_chain_mismatch > 1e-6)
     fail(

@@ -8,6 +8,7 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
 #include "kinetofem/solver/couplings.hpp"
 
 namespace kinetofem::pipeline {
@@ -120,6 +121,14 @@ bool parts_in_several_planes(const std::vector<PartSpec>& specs) {
   return std::any_of(specs.begin(), specs.end(), [&](const PartSpec& spec) {
     return spec.placement.offset_m.z() != specs.front().placement.offset_m.z();
   });
+}
+
+void write_solid_field(post::BodyWriter& body, const fem::Mesh& mesh) {
+  const meshes::ElementSolids solids = meshes::element_solids(mesh);
+  if (solids.names.empty()) return;
+  Eigen::VectorXd solid(Eigen::Index(solids.of_element.size()));
+  for (std::size_t e = 0; e < solids.of_element.size(); ++e) solid(Eigen::Index(e)) = solids.of_element[e];
+  body.write_element_field(post::layout::kSolid, post::layout::kDimensionless, solid);
 }
 
 void apply_mass_properties(mech::MultibodyModel& model, const std::vector<Part>& parts, const Log& log,

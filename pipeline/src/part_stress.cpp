@@ -94,12 +94,7 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   }
 
   post::BodyWriter& body = writer.add_body(part.body(), supported.mesh);
-  // A welded part: each element's solid, so a viewer can colour the part by solid.
-  if (const auto solids = meshes::element_solids(supported.mesh); !solids.names.empty()) {
-    Eigen::VectorXd solid(Eigen::Index(solids.of_element.size()));
-    for (std::size_t e = 0; e < solids.of_element.size(); ++e) solid(Eigen::Index(e)) = solids.of_element[e];
-    body.write_element_field(post::layout::kSolid, post::layout::kDimensionless, solid);
-  }
+  write_solid_field(body, supported.mesh);
   body.begin_series({{post::layout::kDisplacement, "m", 3, post::kVectorComponents}, {post::layout::kVonMises, "Pa", 1, {}}});
   PartSummary ps;
   ps.body = part.body();

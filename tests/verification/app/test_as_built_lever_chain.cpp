@@ -21,6 +21,7 @@
 // Mises stress over the integration points agree.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <algorithm>
 #include <filesystem>
@@ -35,6 +36,8 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/postproc/results_file.hpp"
+#include "kinetofem/postproc/results_layout.hpp"
 #include "kinetofem/structure/calculix_assembly_export.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 #include "kinetofem/testing/calculix_run.hpp"
@@ -137,6 +140,40 @@ TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
   EXPECT_LT(error, 1e-6);
   EXPECT_GT(expected.norm(), 0.0);
   fs::remove_all(dir);
+}
+
+// The bundled case through the whole chain at a coarse mesh: its parts sit
+// in several planes, so the fatigue check takes every part's stress from the
+// elastic assembly and says so; the welded parts' `solid` cell field is on
+// their assembly bodies too.
+TEST(AsBuiltLeverChain, RunsTheWholeChainWithTheFatigueOnTheAssemblysStress) {
+  RunOptions options;
+  options.output_dir = fs::temp_directory_path() / "kinetofem_as_built_whole_chain";
+  fs::remove_all(options.output_dir);
+  options.quiet = true;
+  options.case_path = "cases/lever_chain_manipulator_as_built/case.toml";
+  const CaseFile c = CaseFile::load(options.case_path, linkage_schema(), false,
+                                    {"mesh.element_size_mm=25", "mesh.order=1", "simulation.output_times=11"});
+  const LinkageRun run = run_linkage(c, options);
+  ASSERT_TRUE(run.assembly.has_value());
+  ASSERT_TRUE(run.vibration.has_value());
+  ASSERT_EQ(run.fatigue.size(), run.parts.size());
+  for (const auto& f : run.fatigue) {
+    EXPECT_EQ(f.stress_source, pipeline::StressHistorySource::ElasticAssembly) << f.body;
+    EXPECT_TRUE(std::isfinite(f.max_utilization)) << f.body;
+  }
+  const auto lever = std::find_if(run.fatigue.begin(), run.fatigue.end(), [](const auto& f) { return f.body == "lever"; });
+  ASSERT_NE(lever, run.fatigue.end());
+  EXPECT_GT(lever->max_utilization, 0.0);
+
+  const auto results = post::ResultsFile::open(run.results_file);
+  for (const char* body : {"lever", "assembly.lever"}) {
+    const fem::Mesh mesh = results.read_mesh(body);
+    const post::FieldData solid = results.read_element_field(body, post::layout::kSolid);
+    EXPECT_EQ(solid.values.rows(), mesh.element_count()) << body;
+    EXPECT_GT(solid.values.maxCoeff(), 0.0) << body << ": a welded part has several solids";
+  }
+  fs::remove_all(options.output_dir);
 }
 
 TEST(AsBuiltLeverChain, CalculixSolvesTheDesignPoseAlike) {

@@ -15,6 +15,7 @@
 //     displacement           m, N x 3  world axes, from the rigid configuration
 //     displacement_magnitude m, N x 1
 //     von_mises              Pa, N x 1
+//   cell field solid (a welded part: each element's solid, part_model.hpp);
 //   envelopes displacement_magnitude, von_mises (max over the motion);
 //   static study: static_position, static_displacement,
 //     static_displacement_magnitude, static_von_mises;

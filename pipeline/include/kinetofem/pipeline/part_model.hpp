@@ -34,6 +34,7 @@
 #include "kinetofem/meshes/arm.hpp"
 #include "kinetofem/meshes/lever.hpp"
 #include "kinetofem/meshes/part_file.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
 #include "kinetofem/solver/fe_model.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
 #include "kinetofem/structure/part.hpp"
@@ -111,5 +112,10 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
 // then the per-part stage, which is planar, lacks the moments of the offsets
 // between the planes, which only the elastic assembly carries.
 bool parts_in_several_planes(const std::vector<PartSpec>& specs);
+
+// A welded part (a mesh of several named solids): each element's solid index
+// as the cell field `solid` of its body, so a viewer can colour the part by
+// solid (the names: meshes::element_solids). Nothing for a one-solid part.
+void write_solid_field(post::BodyWriter& body, const fem::Mesh& mesh);
 
 }  // namespace kinetofem::pipeline
