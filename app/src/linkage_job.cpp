@@ -464,7 +464,8 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   run.max_chain_tension_n = extremes.max_chain_tension_n;
   std::printf("\nSummary of '%s' (linkage, %s, %zu output times over %.4g s)\n%s", name.c_str(), method.c_str(),
               run.results.frames.size(), run_case.times.back(), extremes.text.c_str());
-  if (!run.parts.empty()) std::printf("%s", pipeline::format_part_table(run.parts).c_str());
+  if (!run.parts.empty())
+    std::printf("%s", pipeline::format_part_table(run.parts, pipeline::parts_in_several_planes(run_case.parts)).c_str());
   print_stage_summaries(result);
   // The stage lines printed the dynamics checks already; under --quiet the summary is all there is.
   if (log.is_quiet()) std::printf("%s\n", run.results.format_checks().c_str());

@@ -70,7 +70,7 @@ PartExtremes part_extremes(const std::vector<PartSummary>& parts) {
   return e;
 }
 
-std::string format_part_table(const std::vector<PartSummary>& parts) {
+std::string format_part_table(const std::vector<PartSummary>& parts, bool several_planes) {
   std::size_t width = 8;  // the longest part name
   for (const auto& p : parts) width = std::max(width, p.body.size());
   std::string out = fmt::format("  {:<{}} {:>9} {:>14} {:>10} {:>14} {:>10} {:>12} {:>12}\n", "part", width, "DoFs",
@@ -82,6 +82,9 @@ std::string format_part_table(const std::vector<PartSummary>& parts) {
                        p.has_static_study ? fmt::format("{:.3f}", p.static_von_mises_pa / kMpa) : "-",
                        p.has_static_study ? fmt::format("{:.5f}", p.static_displacement_m / kMm) : "-");
   for (const auto& p : parts) out += fmt::format("  {:<{}} solver: {}\n", p.body, width, p.solver_summary);
+  if (several_planes)
+    out += "  (each part alone under the planar multibody reactions; the parts sit in several planes, so the moments "
+           "between the planes are in the elastic assembly's stress only, below)\n";
   return out;
 }
 

@@ -153,6 +153,10 @@ TEST(FormatPartTable, ListsEveryPartInMpaAndMm) {
   }
   // Header + one row per part + one solver line per part.
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table;
+  // Parts in several planes: one more line, saying whose stress has the moments between the planes.
+  const std::string planes = format_part_table({summary("lever", 80.5e6, 1.25e-4, 5e6, 3e-5)}, true);
+  EXPECT_TRUE(contains(planes, "the parts sit in several planes")) << planes;
+  EXPECT_TRUE(contains(planes, "elastic assembly's stress")) << planes;
 }
 
 }  // namespace

@@ -26,7 +26,10 @@ struct PartExtremes {
 };
 PartExtremes part_extremes(const std::vector<PartSummary>& parts);
 
-// The per-part table and one solver line per part.
-std::string format_part_table(const std::vector<PartSummary>& parts);
+// The per-part table and one solver line per part. `several_planes`: the
+// parts sit in several planes (parts_in_several_planes), so a line says that
+// this stress is each part alone under the planar reactions and that the
+// elastic assembly's has the moments between the planes.
+std::string format_part_table(const std::vector<PartSummary>& parts, bool several_planes = false);
 
 }  // namespace kinetofem::pipeline
