@@ -14,6 +14,7 @@
 #include "kinetofem/app/case_file.hpp"
 #include "kinetofem/app/linkage_job.hpp"
 #include "kinetofem/postproc/results_file.hpp"
+#include "kinetofem/testing/linkage_run.hpp"
 
 namespace kinetofem::app {
 namespace {
@@ -21,13 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(LinkageFramePart, LeverChainOnABasePlateRunsAndTheFrameIsInTheSplit) {
-  RunOptions options;
-  options.output_dir = fs::temp_directory_path() / "kinetofem_linkage_frame_part";
-  fs::remove_all(options.output_dir);
-  options.quiet = true;
-  options.case_path = "tests/data/linkage_frame_part/case.toml";
-  const CaseFile c = CaseFile::load(options.case_path, linkage_schema(), false, {});
-  const LinkageRun run = run_linkage(c, options);
+  const auto [output_dir, run] =
+      testing::run_linkage_quietly("tests/data/linkage_frame_part/case.toml", "kinetofem_linkage_frame_part");
 
   // The ground carries no mass in the dynamics.
   const auto ground = std::find_if(run.model.bodies.begin(), run.model.bodies.end(),
@@ -68,7 +64,7 @@ TEST(LinkageFramePart, LeverChainOnABasePlateRunsAndTheFrameIsInTheSplit) {
   const auto bodies = file.bodies();
   for (const std::string body : {"frame", "assembly.frame"})
     EXPECT_NE(std::find(bodies.begin(), bodies.end(), body), bodies.end()) << body;
-  fs::remove_all(options.output_dir);
+  fs::remove_all(output_dir);
 }
 
 }  // namespace

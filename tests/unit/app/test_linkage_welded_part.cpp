@@ -13,6 +13,7 @@
 #include "kinetofem/app/linkage_job.hpp"
 #include "kinetofem/postproc/results_file.hpp"
 #include "kinetofem/postproc/results_layout.hpp"
+#include "kinetofem/testing/linkage_run.hpp"
 
 namespace kinetofem::app {
 namespace {
@@ -20,13 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(LinkageWeldedPart, CrankOfTwoSolidsRunsAndTheResultsNameTheSolids) {
-  RunOptions options;
-  options.output_dir = fs::temp_directory_path() / "kinetofem_linkage_welded_part";
-  fs::remove_all(options.output_dir);
-  options.quiet = true;
-  options.case_path = "tests/data/linkage_welded_part/case.toml";
-  const CaseFile c = CaseFile::load(options.case_path, linkage_schema(), false, {});
-  const LinkageRun run = run_linkage(c, options);
+  const auto [output_dir, run] =
+      testing::run_linkage_quietly("tests/data/linkage_welded_part/case.toml", "kinetofem_linkage_welded_part");
   ASSERT_EQ(run.parts.size(), 1u);
   EXPECT_GT(run.parts.front().peak_von_mises_pa, 0.0);
 

@@ -41,6 +41,7 @@
 #include "kinetofem/structure/calculix_assembly_export.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
 #include "kinetofem/testing/calculix_run.hpp"
+#include "kinetofem/testing/linkage_run.hpp"
 
 namespace kinetofem::app {
 namespace {
@@ -147,14 +148,9 @@ TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
 // elastic assembly and says so; the welded parts' `solid` cell field is on
 // their assembly bodies too.
 TEST(AsBuiltLeverChain, RunsTheWholeChainWithTheFatigueOnTheAssemblysStress) {
-  RunOptions options;
-  options.output_dir = fs::temp_directory_path() / "kinetofem_as_built_whole_chain";
-  fs::remove_all(options.output_dir);
-  options.quiet = true;
-  options.case_path = "cases/lever_chain_manipulator_as_built/case.toml";
-  const CaseFile c = CaseFile::load(options.case_path, linkage_schema(), false,
-                                    {"mesh.element_size_mm=25", "mesh.order=1", "simulation.output_times=11"});
-  const LinkageRun run = run_linkage(c, options);
+  const auto [output_dir, run] =
+      testing::run_linkage_quietly("cases/lever_chain_manipulator_as_built/case.toml", "kinetofem_as_built_whole_chain",
+                                   {"mesh.element_size_mm=25", "mesh.order=1", "simulation.output_times=11"});
   ASSERT_TRUE(run.assembly.has_value());
   ASSERT_TRUE(run.vibration.has_value());
   ASSERT_EQ(run.fatigue.size(), run.parts.size());
@@ -173,7 +169,7 @@ TEST(AsBuiltLeverChain, RunsTheWholeChainWithTheFatigueOnTheAssemblysStress) {
     EXPECT_EQ(solid.values.rows(), mesh.element_count()) << body;
     EXPECT_GT(solid.values.maxCoeff(), 0.0) << body << ": a welded part has several solids";
   }
-  fs::remove_all(options.output_dir);
+  fs::remove_all(output_dir);
 }
 
 TEST(AsBuiltLeverChain, CalculixSolvesTheDesignPoseAlike) {
