@@ -19,6 +19,9 @@
 // (structure/calculix_assembly_export.hpp) and solved by ccx where it is
 // installed (skipped otherwise): H's displacement and every part's peak von
 // Mises stress over the integration points agree.
+//
+// And both as-built cases (this one and the four-bar) through the whole
+// chain at a coarse mesh, the fatigue on the assembly's stress.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,13 +146,16 @@ TEST(AsBuiltLeverChain, RigidSolidsAndAnElasticChainGiveTheHandFormulaAtH) {
   fs::remove_all(dir);
 }
 
-// The bundled case through the whole chain at a coarse mesh: its parts sit
-// in several planes, so the fatigue check takes every part's stress from the
-// elastic assembly and says so; the welded parts' `solid` cell field is on
-// their assembly bodies too.
-TEST(AsBuiltLeverChain, RunsTheWholeChainWithTheFatigueOnTheAssemblysStress) {
+// Both bundled as-built cases (the lever-chain and the four-bar) through the
+// whole chain at a coarse mesh: their parts sit in several planes, so the
+// fatigue check takes every part's stress from the elastic assembly and says
+// so; the welded parts' `solid` cell field is on their assembly bodies too.
+class AsBuiltWholeChain : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(AsBuiltWholeChain, RunsWithTheFatigueOnTheAssemblysStress) {
+  const std::string name = GetParam();
   const auto [output_dir, run] =
-      testing::run_linkage_quietly("cases/lever_chain_manipulator_as_built/case.toml", "kinetofem_as_built_whole_chain",
+      testing::run_linkage_quietly("cases/" + name + "/case.toml", "kinetofem_whole_chain_" + name,
                                    {"mesh.element_size_mm=25", "mesh.order=1", "simulation.output_times=11"});
   ASSERT_TRUE(run.assembly.has_value());
   ASSERT_TRUE(run.vibration.has_value());
@@ -171,6 +177,9 @@ TEST(AsBuiltLeverChain, RunsTheWholeChainWithTheFatigueOnTheAssemblysStress) {
   }
   fs::remove_all(output_dir);
 }
+
+INSTANTIATE_TEST_SUITE_P(Cases, AsBuiltWholeChain,
+                         ::testing::Values("lever_chain_manipulator_as_built", "lever_manipulator_as_built"));
 
 TEST(AsBuiltLeverChain, CalculixSolvesTheDesignPoseAlike) {
   if (!kinetofem::testing::have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
