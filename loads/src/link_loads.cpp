@@ -79,17 +79,43 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
       p = it->second;
     }
     a.bore = {attachment.face_set, lift(p), Eigen::Vector3d::UnitZ()};
-    if (a.distribution == BoreLoad::BearingPressure)
-      require(mech::joint_facts(joint.type).bearing_pressure,
-              "link '{}': joint '{}': a bearing pressure needs a revolute (pin) joint", link.body,
-              joint.name);
+    switch (a.distribution) {
+      case BoreLoad::DistributingCoupling:
+        break;
+      case BoreLoad::BearingPressure:
+        require(mech::joint_facts(joint.type).bearing_pressure,
+                "link '{}': joint '{}': a bearing pressure needs a revolute (pin) joint", link.body, joint.name);
+        break;
+      case BoreLoad::Contact:
+        require(mech::joint_facts(joint.type).bearing_pressure,
+                "link '{}': joint '{}': contact needs a revolute (pin) joint", link.body, joint.name);
+        require(std::isfinite(attachment.clearance_m) && attachment.clearance_m >= 0,
+                "link '{}': joint '{}': the pin's clearance {} m is negative (an interference fit is not supported)",
+                link.body, joint.name, attachment.clearance_m);
+        break;
+    }
     mesh.face_set(attachment.face_set);  // throws naming the sets present
     a.coupling = coupling_on(attachment.face_set);
     a.bore.axis_point_m.z() = face_z(a.coupling);
     has_bearing_pressure_ = has_bearing_pressure_ || a.distribution == BoreLoad::BearingPressure;
+    if (a.distribution == BoreLoad::Contact) {
+      for (const auto& other : contact_bores_)
+        require(other.bore.face_set != attachment.face_set,
+                "link '{}': joints '{}' and '{}' are both in contact with face set '{}': one pin per bore",
+                link.body, other.joint, joint.name, attachment.face_set);
+      contact_bores_.push_back({joint.name,
+                                {attachment.face_set, couplings_[size_t(a.coupling)]->centroid(),
+                                 Eigen::Vector3d::UnitZ()},
+                                12 + 6 * a.coupling,
+                                attachment.clearance_m});
+    }
     a.revolute = mech::joint_facts(joint.type).out_of_plane_pin;
     joints_.push_back(std::move(a));
   }
+  require(!(has_bearing_pressure_ && !contact_bores_.empty()),
+          "link '{}': a cosine bearing pressure and a pin in contact on one part are not supported together "
+          "(the contact needs fixed load patterns): use coupling or contact for joint '{}'",
+          link.body, contact_bores_.empty() ? std::string() : contact_bores_.front().joint);
   for (const auto& attachment : link.point_masses) {
     Mass m;
     m.name = attachment.point_mass;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include <Eigen/SVD>
+
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/solver/dense_product.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
@@ -70,9 +72,25 @@ std::vector<fem::Index> supported_nodes(const fem::FeModel& model) {
   return supported;
 }
 
+// A frame's nodal forces: LinkLoads::loads_at, or for a link with pins in
+// contact the remaining patterns and the contact forces.
+LinkLoadResult forces_at(const LinkLoads& loads, const std::vector<mech::Frame>& frames, std::size_t step,
+                         const LinkContactHistory* contact, const Eigen::MatrixXd& patterns) {
+  if (!contact) return loads.loads_at(frames[step]);
+  const LinkLoadCoefficients c = loads.coefficients_at(frames[step]);
+  LinkLoadResult r;
+  r.forces = patterns * contact->remaining_coefficients.col(Eigen::Index(step));
+  contact->add_forces(contact->pressure_pa.col(Eigen::Index(step)), r.forces);
+  r.equilibrium_residual = c.equilibrium_residual;
+  r.out_of_plane_moment_nm = c.out_of_plane_moment_nm;
+  r.out_of_plane_force_n = c.out_of_plane_force_n;
+  return r;
+}
+
 void step_by_step(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, const std::vector<mech::Frame>& frames,
-                  const LinkStressOptions& options, const StepCallback& on_step, Progress& progress,
-                  LinkEnvelope& env) {
+                  const LinkContactHistory* contact, const LinkStressOptions& options, const StepCallback& on_step,
+                  Progress& progress, LinkEnvelope& env) {
+  const Eigen::MatrixXd patterns = contact ? loads.pattern_forces() : Eigen::MatrixXd();
   const fem::FeModel& model = analysis.model();
   const fem::Index nodes = model.mesh.node_count();
   const std::vector<fem::Index> supported = supported_nodes(model);
@@ -82,7 +100,7 @@ void step_by_step(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, c
     const std::size_t count = std::min(block, frames.size() - first);
     Eigen::MatrixXd F(3 * nodes, Eigen::Index(count));
     for (std::size_t k = 0; k < count; ++k) {
-      const LinkLoadResult r = loads.loads_at(frames[first + k]);
+      const LinkLoadResult r = forces_at(loads, frames, first + k, contact, patterns);
       env.worst_equilibrium_residual = std::max(env.worst_equilibrium_residual, r.equilibrium_residual);
       env.max_out_of_plane_moment_nm = std::max(env.max_out_of_plane_moment_nm, r.out_of_plane_moment_nm);
       F.col(Eigen::Index(k)) = r.forces;
@@ -113,22 +131,49 @@ void step_by_step(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, c
   }
 }
 
+// The contact pressures as load patterns: p(t) = U (U^T p(t)) with U the
+// left singular vectors of the history [p(t)] whose singular values exceed
+// 1e-13 of the largest (the dropped part is below that share of the
+// pressure), so a motion whose contact spans few shapes adds few patterns. Appends to names, P (3 N x .) and C (. x frames).
+void append_contact_patterns(const LinkContactHistory& contact, std::vector<std::string>& names,
+                             Eigen::MatrixXd& P, Eigen::MatrixXd& C) {
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(contact.pressure_pa, Eigen::ComputeThinU);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  Eigen::Index rank = 0;
+  while (rank < sigma.size() && sigma[rank] > 1e-13 * sigma[0]) ++rank;
+  const Eigen::MatrixXd U = svd.matrixU().leftCols(rank);
+  const Eigen::Index p = P.cols();
+  P.conservativeResize(Eigen::NoChange, p + rank);
+  P.rightCols(rank).setZero();
+  contact.add_forces(U, P.rightCols(rank));
+  C.conservativeResize(C.rows() + rank, Eigen::NoChange);
+  C.bottomRows(rank) = U.transpose() * contact.pressure_pa;
+  for (Eigen::Index k = 0; k < rank; ++k) names.push_back(fmt::format("contact.shape_{}", k + 1));
+}
+
 void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, const std::vector<mech::Frame>& frames,
-                const LinkStressOptions& options, const StepCallback& on_step, Progress& progress, const Log& log,
-                LinkEnvelope& env) {
+                const LinkContactHistory* contact, const LinkStressOptions& options, const StepCallback& on_step,
+                Progress& progress, const Log& log, LinkEnvelope& env) {
   const fem::FeModel& model = analysis.model();
   const fem::Index nodes = model.mesh.node_count();
   const std::vector<fem::Index> supported = supported_nodes(model);
   const Eigen::Index steps = Eigen::Index(frames.size());
 
-  // 1. The coefficients of every frame (and the loads' equilibrium checks).
-  const std::vector<std::string> all_names = loads.pattern_names();
+  // 1. The coefficients of every frame (and the loads' equilibrium checks);
+  // with pins in contact, what remains on the patterns and the contact
+  // forces as patterns of their own.
+  std::vector<std::string> all_names = loads.pattern_names();
   Eigen::MatrixXd all_coefficients(loads.pattern_count(), steps);
   for (Eigen::Index t = 0; t < steps; ++t) {
     const LinkLoadCoefficients c = loads.coefficients_at(frames[size_t(t)]);
     env.worst_equilibrium_residual = std::max(env.worst_equilibrium_residual, c.equilibrium_residual);
     env.max_out_of_plane_moment_nm = std::max(env.max_out_of_plane_moment_nm, c.out_of_plane_moment_nm);
     all_coefficients.col(t) = c.coefficients;
+  }
+  Eigen::MatrixXd all_patterns = loads.pattern_forces();
+  if (contact) {
+    all_coefficients = contact->remaining_coefficients;
+    append_contact_patterns(*contact, all_names, all_patterns, all_coefficients);
   }
   // 2. Patterns with a coefficient at some time (a zero row adds exactly 0).
   std::vector<Eigen::Index> kept;
@@ -139,7 +184,6 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
   patterns.coefficients.resize(m, steps);
   Eigen::MatrixXd P(3 * nodes, m);
   {
-    const Eigen::MatrixXd all_patterns = loads.pattern_forces();
     for (Eigen::Index k = 0; k < m; ++k) {
       patterns.names.push_back(all_names[size_t(kept[size_t(k)])]);
       patterns.coefficients.row(k) = all_coefficients.row(kept[size_t(k)]);
@@ -222,8 +266,17 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
 
 LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads,
                                       const std::vector<mech::Frame>& frames, const Log& log,
-                                      const LinkStressOptions& options, const StepCallback& on_step) {
+                                      const LinkStressOptions& options, const StepCallback& on_step,
+                                      const LinkContactHistory* contact) {
   require(!frames.empty(), "link '{}': no output times to analyse", loads.body());
+  std::optional<LinkContactHistory> own_contact;
+  if (!loads.contact_bores().empty() && !contact) {
+    own_contact = solve_contact_over_motion(analysis, loads, frames, log);
+    contact = &*own_contact;
+  }
+  require(!contact || contact->pressure_pa.cols() == Eigen::Index(frames.size()),
+          "link '{}': the contact history has {} output times, the motion {}", loads.body(),
+          contact ? contact->pressure_pa.cols() : 0, frames.size());
   require(options.load_path != LoadPath::Superposition || loads.superposable(),
           "link '{}': unit-load superposition was asked for, but a joint's cosine bearing pressure is not a "
           "combination of fixed load patterns; use the step-by-step path", loads.body());
@@ -239,9 +292,9 @@ LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const
   const bool superpose = options.load_path == LoadPath::Superposition ||
                          (options.load_path == LoadPath::Auto && loads.superposable());
   if (superpose)
-    superposed(analysis, loads, frames, options, on_step, progress, log, env);
+    superposed(analysis, loads, frames, contact, options, on_step, progress, log, env);
   else
-    step_by_step(analysis, loads, frames, options, on_step, progress, env);
+    step_by_step(analysis, loads, frames, contact, options, on_step, progress, env);
   progress.finish();
   env.peak_von_mises_pa = env.max_von_mises_pa.maxCoeff(&env.peak_von_mises_node);
   env.peak_von_mises_step = env.max_von_mises_step[env.peak_von_mises_node];
@@ -250,6 +303,7 @@ LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const
   env.solver = analysis.solver_statistics();
   env.iterative_solver = analysis.uses_iterative_solver();
   env.solver_summary = analysis.solver_summary();
+  env.contact = std::move(own_contact);
   return env;
 }
 

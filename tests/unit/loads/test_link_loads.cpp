@@ -15,54 +15,14 @@
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/meshes/mesh_geometry.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
+#include "kinetofem/testing/pendulum_links.hpp"
 
 namespace kinetofem::loads {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
-const fem::FeModel& link_model() {
-  static const fem::FeModel model = [] {
-    fem::FeModel m;
-    meshes::MeshOptions options;
-    options.element_size_m = 0.01;
-    options.order = 2;
-    m.mesh = meshes::mesh_geometry("tests/data/meshes/link_two_bores.geo", options);
-    return m;
-  }();
-  return model;
-}
-
-mech::MultibodyModel double_pendulum() {
-  mech::MultibodyModel m;
-  m.name = "double pendulum";
-  m.characteristic_length_m = 0.3;
-  m.gravity = {0.0, -9.81};
-  mech::Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  mech::Body link1;
-  link1.name = "link1";
-  assign_mass_properties(link1, link_model());
-  link1.points["B2"] = {0.24, 0.0};
-  mech::Body link2 = link1;
-  link2.name = "link2";
-  link2.pose = {0.24, 0.0, 0.0};
-  link2.point_masses.push_back({"tip", 3.0, {0.24, 0.0}});
-  m.bodies = {ground, link1, link2};
-  m.joints.push_back({"J1", mech::JointType::Revolute, "ground", "origin", "link1", "origin"});
-  m.joints.push_back({"J2", mech::JointType::Revolute, "link1", "B2", "link2", "origin"});
-  mech::MotionDrive d1;
-  d1.name = "D1";
-  d1.coordinate = {mech::CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}};
-  d1.law = std::make_shared<mech::CycloidalLaw>(60 * kDeg, 0.5);
-  mech::MotionDrive d2;
-  d2.name = "D2";
-  d2.coordinate = {mech::CoordinateType::Angle, "link1", "origin", "link2", "origin", {1, 0}};
-  d2.law = std::make_shared<mech::Polynomial345Law>(-90 * kDeg, 0.5);
-  m.motion_drives = {d1, d2};
-  return m;
-}
+const fem::FeModel& link_model() { return testing::two_bore_link_model(); }
+using testing::double_pendulum;
 
 std::vector<double> times(int n) {
   std::vector<double> t;

@@ -64,13 +64,30 @@
 
 namespace kinetofem::loads {
 
-enum class BoreLoad { DistributingCoupling, BearingPressure };
+// How a joint's reaction enters the bore: a distributing coupling, a cosine
+// bearing pressure, or the contact of a round pin (loads::LinkContact,
+// fem::BoreContactSurface): the bore's coupling pattern then carries only
+// what a frictionless pin cannot (force along the axis, moment about it)
+// and the contact forces the rest.
+enum class BoreLoad { DistributingCoupling, BearingPressure, Contact };
 
 // Where a joint of the multibody model acts on the link's mesh.
 struct JointAttachment {
   std::string joint;     // joint name in the multibody model
   std::string face_set;  // bore (pins) or roller rim (chain) of the mesh
   BoreLoad distribution = BoreLoad::DistributingCoupling;
+  double clearance_m = 0.0;  // Contact: radial clearance of the pin in the bore (>= 0)
+};
+
+// A pin in contact with a bore of the link (BoreLoad::Contact): the joint,
+// its bore (face set, axis through the bore coupling's centroid, along z),
+// the bore coupling's first load pattern (its F_x; the next five are F_y,
+// F_z, M_x, M_y, M_z about the centroid) and the pin's clearance.
+struct ContactBore {
+  std::string joint;
+  fem::BoreGeometry bore;
+  int first_pattern = -1;
+  double clearance_m = 0.0;
 };
 
 // A point mass of the multibody body carried through a mount face.
@@ -148,8 +165,13 @@ class LinkLoads {
 
   const std::string& body() const { return link_.body; }
 
-  // Unit-load superposition (see "Load patterns" above).
+  // Unit-load superposition (see "Load patterns" above). A link with pins in
+  // contact is superposable: the contact forces are added to its patterns
+  // by the stress stage (link_stress_history.hpp).
   bool superposable() const { return !has_bearing_pressure_; }
+  // The pins in contact with the link's bores (BoreLoad::Contact), in the
+  // order of the attachments.
+  const std::vector<ContactBore>& contact_bores() const { return contact_bores_; }
   int pattern_count() const { return 12 + 6 * int(couplings_.size()); }
   // "body_force.c_x" .. "body_force.A_zz", then "<face_set>.F_x" .. ".M_z".
   std::vector<std::string> pattern_names() const;
@@ -216,6 +238,7 @@ class LinkLoads {
   std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings_;
   std::vector<std::string> coupling_face_sets_;
   bool has_bearing_pressure_ = false;
+  std::vector<ContactBore> contact_bores_;
   Eigen::Matrix<double, 6, 12> body_force_resultants_;  // force; moment about the origin
   std::vector<Attached> joints_;
   std::vector<Mass> masses_;

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "kinetofem/core/log.hpp"
+#include "kinetofem/loads/link_contact.hpp"
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 #include "kinetofem/solver/stress_recovery.hpp"
@@ -86,6 +87,9 @@ struct LinkEnvelope {
   std::string solver_summary;     // fem::LinearStaticAnalysis::solver_summary()
   // Superposition path: the patterns solved (else empty) and how many.
   std::optional<LinkLoadPatterns> patterns;
+  // Pins in contact, when analyse_link_over_motion solved them itself (not
+  // when the caller gave their history).
+  std::optional<LinkContactHistory> contact;
   long solved_right_hand_sides = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0, recovery_seconds = 0.0;
 };
@@ -106,10 +110,15 @@ LinkEnvelope analyse_link_over_motion(const fem::FeModel& supported_model, const
 
 // The same on a factorization made before (of the supported model, which it
 // refers to), e.g. one shared with the elastic assembly, so that a part is
-// factorized once for both. options.solver is not used.
+// factorized once for both. options.solver is not used. A link with pins in
+// contact (LinkLoads::contact_bores) takes `contact`, the contact solved
+// before on the same factorization and frames (solve_contact_over_motion),
+// or solves it here when it is null; its forces are added as load patterns
+// (superposition) or to each step's loads.
 LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& factorized, const LinkLoads& loads,
                                       const std::vector<mech::Frame>& frames, const Log& log,
                                       const LinkStressOptions& options = {},
-                                      const StepCallback& on_step = {});
+                                      const StepCallback& on_step = {},
+                                      const LinkContactHistory* contact = nullptr);
 
 }  // namespace kinetofem::loads
