@@ -13,6 +13,7 @@
 #include "kinetofem/app/motion_case_keys.hpp"
 #include "kinetofem/app/motion_keys.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/loads/iso_fit.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/mechanisms/manipulator_names.hpp"
@@ -55,8 +56,15 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "links.bore_diameter_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = lever.bore_diameter_m / kMm, .min = 0, .min_exclusive = true, .doc = "pin bore diameter (all joints)"},
       {.path = "links.boss_diameter_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = lever.boss_diameter_m / kMm, .min = 0, .min_exclusive = true, .doc = "boss outer diameter (all joints)"},
       {.path = "links.boss_length_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = lever.boss_length_m / kMm, .min = 0, .min_exclusive = true, .doc = "boss length along the pins"},
-      {.path = "loads.bore_load", .type = Type::String, .default_text = "coupling", .allowed = {"coupling", "bearing"},
-       .doc = "pin loads on bores: 'coupling' (distributing, RBE3-like: exact resultant, any reaction) or 'bearing' (cosine pressure)"},
+      {.path = "loads.bore_load", .type = Type::String, .default_text = "coupling", .allowed = {"coupling", "bearing", "contact"},
+       .doc = "pin loads on bores: 'coupling' (distributing, RBE3-like: exact resultant, any reaction), 'bearing' (cosine "
+              "pressure) or 'contact' (rigid round pins in frictionless contact with the bores: docs/contact.md)"},
+      {.path = "loads.clearance_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0, .max = 10,
+       .doc = "bore_load = 'contact': the pins' radial clearance in their bores (default 0: line-to-line)",
+       .range_note = "an interference fit (negative) is not supported"},
+      {.path = "loads.fit", .type = Type::String,
+       .doc = "bore_load = 'contact': an ISO 286 clearance fit such as \"H7/g6\" instead of clearance_mm (its mean radial "
+              "clearance at the bore's diameter)"},
       {.path = "static_study.enabled", .type = Type::Boolean, .default_number = 1, .doc = "also solve the static pose study (gravity and payload, at rest)"},
       {.path = "static_study.dphi_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0, .min = -180, .max = 180,
        .doc = "lever angle of the static pose from the design position"},
@@ -102,8 +110,23 @@ pipeline::ManipulatorLinks read_links(const CaseFile& c) {
   links.lever.boss_length_m = c.number("links.boss_length_mm");
   links.arm.arm_depth_m = c.number("links.arm_depth_mm");
   links.arm.arm_thickness_m = c.number("links.arm_thickness_mm");
-  links.bore_load = c.text_value("loads.bore_load") == "bearing" ? loads::BoreLoad::BearingPressure
-                                                                : loads::BoreLoad::DistributingCoupling;
+  const std::string bore_load = c.text_value("loads.bore_load");
+  links.bore_load = bore_load == "bearing"   ? loads::BoreLoad::BearingPressure
+                    : bore_load == "contact" ? loads::BoreLoad::Contact
+                                             : loads::BoreLoad::DistributingCoupling;
+  const bool clearance = c.has("loads.clearance_mm"), fit = c.has("loads.fit");
+  require(links.bore_load == loads::BoreLoad::Contact || (!clearance && !fit),
+          "{}: a pin clearance or fit needs loads.bore_load = \"contact\"", c.where(clearance ? "loads.clearance_mm" : "loads.fit"));
+  require(!(clearance && fit), "{}: give loads.clearance_mm or loads.fit, not both", c.where("loads.fit"));
+  if (clearance) links.pin_fit.clearance_m = c.number("loads.clearance_mm");
+  if (fit) {
+    links.pin_fit.fit = c.text_value("loads.fit");
+    try {
+      loads::check_fit(links.pin_fit.fit);
+    } catch (const Error& e) {
+      fail("{}: {}", c.where("loads.fit"), e.what());
+    }
+  }
   return links;
 }
 

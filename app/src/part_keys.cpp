@@ -7,6 +7,7 @@
 #include "kinetofem/app/common_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/loads/iso_fit.hpp"
 #include "kinetofem/core/units.hpp"
 
 namespace kinetofem::app {
@@ -59,7 +60,9 @@ pipeline::PartSource source_named(const std::string& name) {
 }
 
 loads::BoreLoad bore_load_named(const std::string& name) {
-  return name == "bearing" ? loads::BoreLoad::BearingPressure : loads::BoreLoad::DistributingCoupling;
+  if (name == "bearing") return loads::BoreLoad::BearingPressure;
+  if (name == "contact") return loads::BoreLoad::Contact;
+  return loads::BoreLoad::DistributingCoupling;
 }
 
 }  // namespace
@@ -130,11 +133,19 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "face_set[].box_mm", .type = Type::Array, .unit = "mm",
                .doc = "[xmin, ymin, zmin, xmax, ymax, zmax] in the part file's coordinates, in mm", .required = true});
   // Face keys of the tables that act on parts.
-  const std::string loads_doc = "coupling (distributing, RBE3-like: exact resultant) or bearing (cosine pressure, pins only)";
+  const std::string loads_doc = "coupling (distributing, RBE3-like: exact resultant), bearing (cosine pressure, pins only) or "
+                                "contact (a rigid round pin in frictionless contact with the bores, revolute joints only: "
+                                "docs/contact.md)";
   s.push_back({.path = "joint[].face_i", .type = Type::String, .doc = "face set of body_i's part the joint acts through"});
   s.push_back({.path = "joint[].face_j", .type = Type::String, .doc = "face set of body_j's part the joint acts through (chain: the roller rim)"});
-  s.push_back({.path = "joint[].load", .type = Type::String, .default_text = "coupling", .allowed = {"coupling", "bearing"},
-               .doc = "how the joint's reaction enters the parts: " + loads_doc});
+  s.push_back({.path = "joint[].load", .type = Type::String, .default_text = "coupling",
+               .allowed = {"coupling", "bearing", "contact"}, .doc = "how the joint's reaction enters the parts: " + loads_doc});
+  s.push_back({.path = "joint[].clearance_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0, .max = 10,
+               .doc = "load = \"contact\": the pin's radial clearance in its bores (default 0: line-to-line)",
+               .range_note = "an interference fit (negative) is not supported"});
+  s.push_back({.path = "joint[].fit", .type = Type::String,
+               .doc = "load = \"contact\": an ISO 286 clearance fit such as \"H7/g6\" instead of clearance_mm: its mean "
+                      "radial clearance at each bore's diameter"});
   for (const char* table : {"motion_drive", "force_drive"}) {
     s.push_back({.path = std::string(table) + "[].face_i", .type = Type::String, .doc = "face set of body_i's part the drive's reaction torque enters through"});
     s.push_back({.path = std::string(table) + "[].face_j", .type = Type::String, .doc = "face set of body_j's part the drive's torque enters through (the shaft bore)"});
@@ -144,6 +155,35 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "spring[].face_j", .type = Type::String, .doc = "face set of body_j's part the spring acts through"});
   s.push_back({.path = "point_force[].face", .type = Type::String, .doc = "face set of the body's part the force acts through"});
 }
+
+namespace {
+
+// A contact joint's clearance (clearance_mm, or a fit), checked against the
+// joint's type and the other loads.
+loads::ContactFit read_pin_fit(const CaseFile& c, std::size_t k, const mech::Joint& j, loads::BoreLoad load) {
+  const bool clearance = c.has("joint[].clearance_mm", k), fit = c.has("joint[].fit", k);
+  if (load != loads::BoreLoad::Contact) {
+    require(!clearance && !fit, "{}: joint '{}': a clearance or fit needs load = \"contact\"",
+            c.where(clearance ? "joint[].clearance_mm" : "joint[].fit", k), j.name);
+    return {};
+  }
+  require(mech::joint_facts(j.type).bearing_pressure, "{} = \"contact\": joint '{}' is {}; contact needs a revolute (pin) joint",
+          c.where("joint[].load", k), j.name, c.text_value("joint[].type", k));
+  require(!(clearance && fit), "{}: joint '{}': give clearance_mm or fit, not both", c.where("joint[].fit", k), j.name);
+  loads::ContactFit out;
+  if (clearance) out.clearance_m = c.number("joint[].clearance_mm", k);
+  if (fit) {
+    out.fit = c.text_value("joint[].fit", k);
+    try {
+      loads::check_fit(out.fit);
+    } catch (const Error& e) {
+      fail("{}: {}", c.where("joint[].fit", k), e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::MultibodyModel& model) {
   std::vector<pipeline::PartSpec> parts;
@@ -292,8 +332,9 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     const std::string what = fmt::format("joint '{}'", j.name);
     const std::string fi = face("joint[].face_i", k, j.body_i, what), fj = face("joint[].face_j", k, j.body_j, what);
     const loads::BoreLoad used = mech::joint_facts(j.type).always_distributing ? loads::BoreLoad::DistributingCoupling : load;
-    if (!fi.empty()) part_for(j.body_i)->attachments.joints.push_back({j.name, fi, used});
-    if (!fj.empty()) part_for(j.body_j)->attachments.joints.push_back({j.name, fj, used});
+    const loads::ContactFit pin = read_pin_fit(c, k, j, load);
+    if (!fi.empty()) part_for(j.body_i)->attachments.joints.push_back({j.name, fi, used, pin.clearance_m, pin.fit});
+    if (!fj.empty()) part_for(j.body_j)->attachments.joints.push_back({j.name, fj, used, pin.clearance_m, pin.fit});
   }
   auto drives = [&](const char* table, const auto& list) {
     for (std::size_t k = 0; k < c.count(table); ++k) {

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/loads/iso_fit.hpp"
 
 namespace kinetofem::loads {
 
@@ -103,11 +104,21 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
         require(other.bore.face_set != attachment.face_set,
                 "link '{}': joints '{}' and '{}' are both in contact with face set '{}': one pin per bore",
                 link.body, other.joint, joint.name, attachment.face_set);
-      contact_bores_.push_back({joint.name,
-                                {attachment.face_set, couplings_[size_t(a.coupling)]->centroid(),
-                                 Eigen::Vector3d::UnitZ()},
-                                12 + 6 * a.coupling,
-                                attachment.clearance_m});
+      const Eigen::Vector3d centre = couplings_[size_t(a.coupling)]->centroid();
+      double radius = 0.0;
+      for (const fem::Index n : couplings_[size_t(a.coupling)]->nodes())
+        radius += (mesh.nodes.row(n).transpose() - centre).head<2>().norm() /
+                  double(couplings_[size_t(a.coupling)]->nodes().size());
+      double clearance = attachment.clearance_m;
+      if (!attachment.fit.empty()) {
+        try {
+          clearance = fit_clearance(attachment.fit, 2 * radius).mean_radial_m();
+        } catch (const Error& e) {
+          fail("link '{}': joint '{}' on face set '{}': {}", link.body, joint.name, attachment.face_set, e.what());
+        }
+      }
+      contact_bores_.push_back({joint.name, {attachment.face_set, centre, Eigen::Vector3d::UnitZ()},
+                                12 + 6 * a.coupling, clearance, 2 * radius});
     }
     a.revolute = mech::joint_facts(joint.type).out_of_plane_pin;
     joints_.push_back(std::move(a));

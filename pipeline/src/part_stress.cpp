@@ -1,6 +1,7 @@
 #include "kinetofem/pipeline/part_stress.hpp"
 
 #include <limits>
+#include <numbers>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
@@ -19,10 +20,72 @@ fem::FeModel with_support(const Part& part) {
     supported.supports = structure::foundation_support(part);
     return supported;
   }
-  std::vector<fem::Index> all(size_t(supported.mesh.node_count()));
-  for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
-  supported.supports = fem::three_two_one_support(supported.mesh, all);
+  // Any node but those of a bore a pin is in contact with (a contact node
+  // must be free to move against the pin).
+  std::vector<char> on_contact_bore(size_t(supported.mesh.node_count()), 0);
+  for (const auto& j : part.attachments.joints)
+    if (j.distribution == loads::BoreLoad::Contact)
+      for (const fem::Index n : fem::nodes_of_faces(supported.mesh.face_set(j.face_set))) on_contact_bore[size_t(n)] = 1;
+  std::vector<fem::Index> candidates;
+  for (fem::Index i = 0; i < supported.mesh.node_count(); ++i)
+    if (!on_contact_bore[size_t(i)]) candidates.push_back(i);
+  supported.supports = fem::three_two_one_support(supported.mesh, candidates);
   return supported;
+}
+
+// The contact pressure at every node of the mesh (0 off the bores).
+post::FieldMatrix nodal_contact_pressure(const loads::LinkContactHistory& contact, Eigen::Index step, fem::Index nodes) {
+  post::FieldMatrix p = post::FieldMatrix::Zero(nodes, 1);
+  for (const auto& bore : contact.bores) {
+    const Eigen::VectorXd values = bore.surface.nodal_pressure(bore.pressure_pa.col(step));
+    for (size_t a = 0; a < bore.surface.nodes().size(); ++a) p(bore.surface.nodes()[a], 0) = values[Eigen::Index(a)];
+  }
+  return p;
+}
+
+// The pins' summaries from the contact history (motion times only) and
+// its table per pin: time, peak pressure, its angle, the arc in contact.
+void summarise_contact(const loads::LinkContactHistory& contact, const loads::LinkLoads& link_loads,
+                       const std::vector<mech::Frame>& motion, const Part& part, post::ResultsWriter& writer,
+                       PartSummary& ps) {
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  for (size_t b = 0; b < contact.bores.size(); ++b) {
+    const auto& bore = contact.bores[b];
+    const loads::ContactBore& spec = link_loads.contact_bores()[b];
+    PinContactSummary s;
+    s.joint = bore.joint;
+    s.face_set = bore.surface.face_set();
+    for (const auto& j : part.attachments.joints)
+      if (j.joint == bore.joint) s.fit = j.fit;
+    s.clearance_m = bore.clearance_m;
+    s.diameter_m = spec.diameter_m;
+    s.min_arc_rad = std::numeric_limits<double>::infinity();
+    post::FieldMatrix table(Eigen::Index(motion.size()), 4);
+    for (size_t t = 0; t < motion.size(); ++t) {
+      const fem::BoreContactState& state = bore.states[t];
+      if (state.peak_pressure_pa > s.peak_pressure_pa) {
+        s.peak_pressure_pa = state.peak_pressure_pa;
+        s.peak_time_s = motion[t].t;
+        s.peak_angle_rad = state.peak_angle_rad;
+        s.arc_at_peak_rad = state.arc_rad;
+      }
+      s.max_arc_rad = std::max(s.max_arc_rad, state.arc_rad);
+      s.min_arc_rad = std::min(s.min_arc_rad, state.arc_rad);
+      table.row(Eigen::Index(t)) << motion[t].t, state.peak_pressure_pa, state.peak_angle_rad / kDegree,
+          state.arc_rad / kDegree;
+    }
+    writer.write_table(fmt::format("contact.{}.{}", part.body(), bore.joint), "s, Pa, deg, deg", table,
+                       {"time", "peak_pressure", "peak_angle", "arc"});
+    ps.contacts.push_back(std::move(s));
+  }
+  ps.contact_corners = long(contact.contact_corners());
+  ps.contact_set_up_seconds = contact.set_up_seconds;
+  ps.contact_solve_seconds = contact.solve_seconds;
+  ps.contact_condensed_bytes = contact.condensed_bytes;
+  ps.contact_most_active_set_steps = contact.most_active_set_steps;
+  ps.contact_interior_point_poses = contact.interior_point_poses;
+  ps.contact_worst_penetration_m = contact.worst_penetration_m;
+  ps.contact_worst_resultant_error = contact.worst_resultant_error;
 }
 
 // The superposition's patterns into the body (motion times only: the static
@@ -93,9 +156,19 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     history->step_stress_pa.resize(6 * supported.mesh.node_count(), Eigen::Index(motion.size()));
   }
 
+  // Pins in contact: solved at every output time first (on the same
+  // factorization), so that each step's pressure is written with its stress.
+  std::optional<loads::LinkContactHistory> contact;
+  if (!link_loads.contact_bores().empty())
+    contact = loads::solve_contact_over_motion(factorized->analysis(), link_loads, frames, log);
+
   post::BodyWriter& body = writer.add_body(part.body(), supported.mesh);
   write_solid_field(body, supported.mesh);
-  body.begin_series({{post::layout::kDisplacement, "m", 3, post::kVectorComponents}, {post::layout::kVonMises, "Pa", 1, {}}});
+  std::vector<post::SeriesField> series = {{post::layout::kDisplacement, "m", 3, post::kVectorComponents},
+                                           {post::layout::kVonMises, "Pa", 1, {}}};
+  if (contact) series.push_back({post::layout::kContactPressure, "Pa", 1, {}});
+  body.begin_series(series);
+  const fem::Index nodes = supported.mesh.node_count();
   PartSummary ps;
   ps.body = part.body();
   ps.nodes = supported.mesh.node_count();
@@ -104,18 +177,28 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     if (step < motion.size()) {
       if (keep_steps)
         history->step_stress_pa.col(Eigen::Index(step)) = Eigen::Map<const Eigen::VectorXd>(s.stress_pa.data(), s.stress_pa.size());
-      if (written(step)) body.write_step(motion[step].t, {{post::layout::kDisplacement, u}, {post::layout::kVonMises, s.von_mises_pa}});
+      if (!written(step)) return;
+      if (contact)
+        body.write_step(motion[step].t, {{post::layout::kDisplacement, u},
+                                         {post::layout::kVonMises, s.von_mises_pa},
+                                         {post::layout::kContactPressure,
+                                          nodal_contact_pressure(*contact, Eigen::Index(step), nodes)}});
+      else
+        body.write_step(motion[step].t, {{post::layout::kDisplacement, u}, {post::layout::kVonMises, s.von_mises_pa}});
       return;
     }
     body.write_static(post::layout::static_name(post::layout::kDisplacement), "m", u, post::kVectorComponents);
     body.write_static(post::layout::static_name(post::layout::kVonMises), "Pa", s.von_mises_pa);
     body.write_static(post::layout::static_name(post::layout::kStress), "Pa", s.stress_pa, post::kVoigtComponents);
+    if (contact)
+      body.write_static(post::layout::static_name(post::layout::kContactPressure), "Pa",
+                        nodal_contact_pressure(*contact, Eigen::Index(step), nodes));
     ps.has_static_study = true;
     ps.static_von_mises_pa = s.von_mises_pa.maxCoeff();
     ps.static_displacement_m = fem::displacement_magnitude(u).maxCoeff();
   };
-  loads::LinkEnvelope env =
-      loads::analyse_link_over_motion(factorized->analysis(), link_loads, frames, log, stress_options, on_step);
+  loads::LinkEnvelope env = loads::analyse_link_over_motion(factorized->analysis(), link_loads, frames, log,
+                                                           stress_options, on_step, contact ? &*contact : nullptr);
   const post::IndexMatrix vm_step = env.max_von_mises_step.cast<fem::Index>();
   const post::IndexMatrix u_step = env.max_displacement_step.cast<fem::Index>();
   // Fields at some output times only: the envelope's steps index all of them.
@@ -124,6 +207,16 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     for (const auto& frame : motion) step_times.push_back(frame.t);
   body.write_envelope(post::layout::kVonMises, "Pa", env.max_von_mises_pa, vm_step, post::layout::kEnvelopeMax, step_times);
   body.write_envelope(post::layout::kDisplacementMagnitude, "m", env.max_displacement_m, u_step, post::layout::kEnvelopeMax, step_times);
+  if (contact) {
+    post::FieldMatrix max_pressure = post::FieldMatrix::Zero(nodes, 1);
+    post::IndexMatrix max_step = post::IndexMatrix::Zero(nodes, 1);
+    for (size_t t = 0; t < motion.size(); ++t) {
+      const post::FieldMatrix p = nodal_contact_pressure(*contact, Eigen::Index(t), nodes);
+      for (fem::Index i = 0; i < nodes; ++i)
+        if (p(i, 0) > max_pressure(i, 0)) max_pressure(i, 0) = p(i, 0), max_step(i, 0) = fem::Index(t);
+    }
+    body.write_envelope(post::layout::kContactPressure, "Pa", max_pressure, max_step, post::layout::kEnvelopeMax, step_times);
+  }
 
   ps.peak_von_mises_pa = env.peak_von_mises_pa;
   ps.peak_von_mises_time_s = motion[size_t(env.peak_von_mises_step)].t;
@@ -152,6 +245,25 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
   ps.max_out_of_plane_moment_nm = env.max_out_of_plane_moment_nm;
   ps.iterative_solver = env.iterative_solver;
   ps.solver_summary = env.solver_summary;
+  if (contact) {
+    summarise_contact(*contact, link_loads, motion, part, writer, ps);
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    for (const auto& c : ps.contacts)
+      log.info("  {}: pin '{}' in contact with bore '{}' (diameter {:.2f} mm, radial clearance {:.1f} um{}): peak "
+               "pressure {:.3f} MPa at t = {:.4f} s, {:.0f} deg from the part's x axis, contact arc {:.0f} deg there "
+               "({:.0f} .. {:.0f} deg over the motion)",
+               ps.body, c.joint, c.face_set, c.diameter_m / units::kMm, c.clearance_m * 1e6,
+               c.fit.empty() ? std::string() : ", fit " + c.fit, c.peak_pressure_pa / units::kMpa, c.peak_time_s,
+               c.peak_angle_rad / kDegree, c.arc_at_peak_rad / kDegree, c.min_arc_rad / kDegree,
+               c.max_arc_rad / kDegree);
+    log.detail("  {}: contact on {} corner nodes, {} output times: set-up {:.2f} s ({:.1f} MB condensed), solve "
+               "{:.3f} s ({:.3g} ms per pose, at most {} active-set steps, {} poses by the interior point); "
+               "penetration at most {:.1e} m, resultant error {:.1e}",
+               ps.body, ps.contact_corners, frames.size(), ps.contact_set_up_seconds, ps.contact_condensed_bytes / 1e6,
+               ps.contact_solve_seconds, 1e3 * ps.contact_solve_seconds / double(frames.size()),
+               ps.contact_most_active_set_steps, ps.contact_interior_point_poses, ps.contact_worst_penetration_m,
+               ps.contact_worst_resultant_error);
+  }
   const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
   // A welded part: the peak's solid, and its seam when it lies on one.
   if (const std::string place = meshes::place_in_welded_part(supported.mesh, ps.peak_von_mises_node); !place.empty())

@@ -287,6 +287,26 @@ BoreContactSurface::BoreContactSurface(const Mesh& mesh, const std::string& face
         }
     }
   }
+  // Each node's corners: itself, or the two ends of its edge (Gmsh order:
+  // mid-edge node k of a face lies on edge (k - corners, k - corners + 1)).
+  node_corners_.assign(nodes_.size(), {-1, -1});
+  for (const auto& block : faces) {
+    const int n = face_facts(block.type).nodes, corners = face_facts(block.type).corners;
+    for (Index f = 0; f < block.size(); ++f) {
+      const auto nodes = block.face(f);
+      for (int a = 0; a < n; ++a) {
+        const Index row = node_row[size_t(nodes[size_t(a)])];
+        if (a < corners) {
+          const Index c = corner_column[size_t(nodes[size_t(a)])];
+          node_corners_[size_t(row)] = {c, c};
+        } else if (node_corners_[size_t(row)][0] < 0) {
+          const int edge = a - corners;
+          node_corners_[size_t(row)] = {corner_column[size_t(nodes[size_t(edge)])],
+                                        corner_column[size_t(nodes[size_t((edge + 1) % corners)])]};
+        }
+      }
+    }
+  }
   // M_ac = integral of N_a L_c over the faces (Gauss rule of the face type).
   force_map_ = Eigen::MatrixXd::Zero(Index(nodes_.size()), Index(corners_.size()));
   Eigen::VectorXd N, L;
@@ -347,6 +367,13 @@ void BoreContactSurface::add_forces(const Eigen::Ref<const Eigen::MatrixXd>& pre
   for (Index c = 0; c < lambda.cols(); ++c)
     for (Index a = 0; a < Index(nodes_.size()); ++a)
       forces.col(c).segment<3>(3 * nodes_[size_t(a)]) += lambda(a, c) * normals_.row(a).transpose();
+}
+
+Eigen::VectorXd BoreContactSurface::nodal_pressure(const Eigen::Ref<const Eigen::VectorXd>& pressure_pa) const {
+  Eigen::VectorXd out(Index(nodes_.size()));
+  for (size_t a = 0; a < nodes_.size(); ++a)
+    out[Index(a)] = 0.5 * (pressure_pa[node_corners_[a][0]] + pressure_pa[node_corners_[a][1]]);
+  return out;
 }
 
 Eigen::MatrixXd BoreContactSurface::weighted_normal_components(

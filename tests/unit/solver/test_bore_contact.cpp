@@ -145,6 +145,19 @@ TEST(BoreContactSurface, GeometryOfABore) {
   }
 }
 
+TEST(BoreContactSurface, NodalPressureIsLinearAlongTheEdges) {
+  // Corner pressures equal to the corners' x (m, as a stand-in field): at a
+  // mid-edge node the mean of its edge's corners, which is the node's x to
+  // the edge's sagitta on the 8 mm bore (below 0.2 mm at this mesh).
+  const Mesh mesh = verification::beam_link_mesh();
+  const BoreContactSurface bore(mesh, "bore_1", Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+  Eigen::VectorXd p(bore.size());
+  for (Eigen::Index c = 0; c < bore.size(); ++c) p[c] = mesh.nodes(bore.corner_nodes()[size_t(c)], 0);
+  const Eigen::VectorXd nodal = bore.nodal_pressure(p);
+  for (size_t a = 0; a < bore.nodes().size(); ++a)
+    EXPECT_NEAR(nodal[Eigen::Index(a)], mesh.nodes(bore.nodes()[a], 0), 2e-4) << "node " << bore.nodes()[a];
+}
+
 TEST(BoreContactSurface, StateOfAContactPatch) {
   // Pressure on the corners within 30 degrees of +y: the arc is 60 degrees
   // to the angular spacing of the corners, the peak pressure's angle within

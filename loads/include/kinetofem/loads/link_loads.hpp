@@ -77,6 +77,9 @@ struct JointAttachment {
   std::string face_set;  // bore (pins) or roller rim (chain) of the mesh
   BoreLoad distribution = BoreLoad::DistributingCoupling;
   double clearance_m = 0.0;  // Contact: radial clearance of the pin in the bore (>= 0)
+  // Contact: an ISO 286 clearance fit ("H7/g6", loads/iso_fit.hpp) instead:
+  // its mean radial clearance at the bore's diameter (measured on the mesh).
+  std::string fit;
 };
 
 // A pin in contact with a bore of the link (BoreLoad::Contact): the joint,
@@ -87,7 +90,8 @@ struct ContactBore {
   std::string joint;
   fem::BoreGeometry bore;
   int first_pattern = -1;
-  double clearance_m = 0.0;
+  double clearance_m = 0.0;  // radial (from JointAttachment::clearance_m or its fit)
+  double diameter_m = 0.0;   // of the bore: twice the mean distance of its nodes from the axis
 };
 
 // A point mass of the multibody body carried through a mount face.

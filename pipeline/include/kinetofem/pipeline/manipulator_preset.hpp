@@ -17,6 +17,7 @@
 
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/mechanisms/manipulator_models.hpp"
+#include "kinetofem/loads/iso_fit.hpp"
 #include "kinetofem/meshes/arm.hpp"
 #include "kinetofem/meshes/lever.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
@@ -27,6 +28,7 @@ struct ManipulatorLinks {
   meshes::LeverDimensions lever;  // length_m = a (set by the preset)
   meshes::ArmDimensions arm;      // roller / coupler dimensions from c, h, r (set by the preset)
   loads::BoreLoad bore_load = loads::BoreLoad::DistributingCoupling;  // pins (the chain: always the coupling)
+  loads::ContactFit pin_fit;  // bore_load = Contact: the pins' clearance (or fit)
 };
 
 // Parts of the manipulator `definition` (its geometry gives a, b0, c, h, r;

@@ -6,9 +6,13 @@
 // the motion and, when a static pose frame is given, the static study, all
 // streamed into the results file under the part's body name:
 //   series  displacement (m, elastic: rigid-body motion removed, body frame),
-//           von_mises (Pa), one step per output time
+//           von_mises (Pa), one step per output time; with pins in contact
+//           also contact_pressure (Pa, on the bores' nodes, 0 elsewhere)
 //   static  static_displacement, static_von_mises, static_stress (Voigt)
-//   envelope von_mises (max), displacement_magnitude (max), with their step
+//   envelope von_mises (max), displacement_magnitude (max), with their step;
+//           contact_pressure (max) with pins in contact
+//   tables  contact.<body>.<joint>: per output time the peak contact pressure
+//           (Pa), its angle and the arc in contact (deg)
 // The part is held by a statically determinate 3-2-1 support whose reactions
 // are checked to vanish (the loads are self-equilibrated). The frame (a part
 // of the ground, Part::held_face) is held on its foundation instead, which
@@ -27,6 +31,18 @@
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::pipeline {
+
+// A pin in contact with a bore of a part over the motion (SI; angles in rad
+// about the pin axis from the part's x axis).
+struct PinContactSummary {
+  std::string joint, face_set;
+  std::string fit;                  // the ISO 286 fit, or empty
+  double clearance_m = 0.0;         // radial
+  double diameter_m = 0.0;          // of the bore
+  double peak_pressure_pa = 0.0, peak_time_s = 0.0, peak_angle_rad = 0.0;
+  double arc_at_peak_rad = 0.0;     // the arc in contact when the peak occurs
+  double max_arc_rad = 0.0, min_arc_rad = 0.0;  // over the motion
+};
 
 // What a run reports of one part (SI units; times in s).
 struct PartSummary {
@@ -48,6 +64,13 @@ struct PartSummary {
   double max_out_of_plane_moment_nm = 0;  // carried by the pins (loads off the mid-plane z = 0)
   bool iterative_solver = false;  // AMG-PCG instead of CHOLMOD (factor too large, or asked for)
   std::string solver_summary;
+  // Pins in contact with the part's bores (loads::BoreLoad::Contact), and the
+  // contact solver's record for the part.
+  std::vector<PinContactSummary> contacts;
+  long contact_corners = 0;
+  double contact_set_up_seconds = 0, contact_solve_seconds = 0, contact_condensed_bytes = 0;
+  int contact_most_active_set_steps = 0, contact_interior_point_poses = 0;
+  double contact_worst_penetration_m = 0, contact_worst_resultant_error = 0;
 };
 
 // A part's stiffness with its statically determinate 3-2-1 support

@@ -131,6 +131,8 @@ inline constexpr const char* kPosition = "position";        // m, world axes (th
 inline constexpr const char* kStress = "stress";             // Pa, Voigt (kVoigtComponents)
 inline constexpr const char* kVonMises = "von_mises";        // Pa
 inline constexpr const char* kPrincipalStress = "principal_stress";  // Pa, kPrincipalComponents
+// Pressure of pins in contact with a part's bores, on the bores' nodes (0 elsewhere).
+inline constexpr const char* kContactPressure = "contact_pressure";  // Pa
 // Prefix of a static field that holds a time-series field's value at the static pose
 // ("static_" + kDisplacement), suffix of a vector field's magnitude (<field> + "_magnitude").
 inline constexpr const char* kStaticPrefix = "static_";

@@ -34,6 +34,7 @@
 // solve_contact solves it by a primal-dual active set method (a semismooth
 // Newton method; a few steps from the last pose's contact set), with a
 // primal-dual interior point method as the fallback when it cycles.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -119,6 +120,10 @@ class BoreContactSurface {
   void add_forces(const Eigen::Ref<const Eigen::MatrixXd>& pressure_pa, Eigen::Ref<Eigen::MatrixXd> forces) const;
   // M^T (n_a . u_a) of displacement columns (3 N x k, node-major): corners x k, m^3.
   Eigen::MatrixXd weighted_normal_components(const Eigen::Ref<const Eigen::MatrixXd>& displacements) const;
+  // The pressure at every node of the bore (nodes() order) from the corner
+  // pressures: the corners' own, the mean of its edge's two corners at a
+  // mid-edge node (the pressure is linear along the edge).
+  Eigen::VectorXd nodal_pressure(const Eigen::Ref<const Eigen::VectorXd>& pressure_pa) const;
   // Force of each corner's unit pressure, sum_a M_ac n_a (corners x 3, N/Pa).
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& pressure_resultants() const { return pressure_force_; }
 
@@ -127,6 +132,7 @@ class BoreContactSurface {
   std::vector<Index> nodes_, corners_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> normals_, pressure_force_;
   Eigen::MatrixXd force_map_;
+  std::vector<std::array<Index, 2>> node_corners_;  // per node: its corner column(s) (twice the same at a corner)
   Eigen::Matrix<double, Eigen::Dynamic, 4> rigid_pin_;
   Eigen::VectorXd area_, angle_;
   Eigen::Vector3d centre_, axis_, e1_, e2_;
