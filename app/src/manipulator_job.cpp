@@ -168,8 +168,9 @@ driver::MotionStressCase read_preset(const CaseFile& c, const mech::ManipulatorD
   run_case.model = mech::make_manipulator_model(def);
   for (auto& body : run_case.model.bodies)  // the placeholders: no case values, the meshes give them
     if (!body.fixed) body.mass_kg = body.inertia_kgm2 = 0.0, body.com_body.setZero();
+  const pipeline::ManipulatorLinks links = read_links(c);  // its key errors name their keys
   try {
-    run_case.parts = pipeline::manipulator_parts(def, read_links(c));
+    run_case.parts = pipeline::manipulator_parts(def, links);
   } catch (const Error& e) {
     fail("{}: [links]: {}", c.path().string(), e.what());
   }
