@@ -471,6 +471,12 @@ int run_post(const PostOptions& o) {
       post::write_mechanism_loads_picture(r, png_dir / "mechanism_loads.png", po);
       written.push_back((png_dir / "mechanism_loads.png").string());
     }
+    if (!post::contact_tables(r).empty()) {
+      const fs::path p = png_dir / "pin_contact.png";
+      const post::ContactPictureInfo info = post::write_contact_picture(r, p, po);
+      written.push_back(fmt::format("{}  ({} pins; peak {:.3f} MPa on {} at {})", p.string(), info.pins.size(),
+                                    info.peak_pressure_pa * 1e-6, info.peak_pin, when(info.peak_time_s)));
+    }
     for (const auto& name : r.histories())
       if (name.rfind("gripper_point_", 0) == 0 || name.rfind("point.", 0) == 0) {
         const std::string point = name.rfind("point.", 0) == 0 ? name.substr(6) : name.substr(14);

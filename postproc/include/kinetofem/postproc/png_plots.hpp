@@ -186,4 +186,18 @@ PointVibrationPictureInfo write_point_vibration_picture(const ResultsFile& resul
                                                         const std::string& point = "H",
                                                         const PictureOptions& options = {});
 
+struct ContactPictureInfo {
+  double peak_pressure_pa = 0.0;  // largest peak contact pressure of any pin over the motion, Pa
+  double peak_time_s = 0.0;       // when
+  std::string peak_pin;           // "<body>.<joint>"
+  std::vector<std::string> pins;  // every pin drawn, "<body>.<joint>"
+};
+
+// The result file's pin contact tables (contact.<body>.<joint>), in file order; empty when none.
+std::vector<std::string> contact_tables(const ResultsFile& results);
+// Each pin's peak contact pressure and arc over the motion. Throws Error naming the file if it
+// has no contact tables (or a misshapen one).
+ContactPictureInfo write_contact_picture(const ResultsFile& results, const std::filesystem::path& png,
+                                         const PictureOptions& options = {});
+
 }  // namespace kinetofem::post
