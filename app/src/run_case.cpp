@@ -62,6 +62,19 @@ void add_fatigue_results(RunSummary& s, const std::vector<pipeline::PartFatigue>
   }
 }
 
+// Pins in contact: the largest peak contact pressure over the parts and per pin (MPa).
+void add_contact_results(RunSummary& s, const std::vector<pipeline::PartSummary>& parts) {
+  double largest = 0.0;
+  bool any = false;
+  for (const auto& p : parts)
+    for (const auto& c : p.contacts) {
+      any = true;
+      largest = std::max(largest, c.peak_pressure_pa);
+      s.extra.push_back({"contact_pressure_" + p.body + "_" + c.joint + "_mpa", c.peak_pressure_pa / kMpa});
+    }
+  if (any) s.extra.push_back({"max_contact_pressure_mpa", largest / kMpa});
+}
+
 // The vibration's key results (Hz, s, mm): the first natural frequency's
 // range over the motion and in the static pose, per tracked point the dynamic
 // amplification, the ringing after the stop and the settling time (inf: never).
@@ -84,6 +97,7 @@ RunSummary summary_of(const ManipulatorSummary& s) {
                          {"static_max_displacement_mm", s.static_max_displacement_m / kMm},
                          {"max_drive_torque_nm", s.max_drive_torque_nm},
                          {"min_chain_tension_n", s.min_chain_tension_n}}};
+  add_contact_results(r, s.links);
   add_assembly_results(r, s.assembly);
   add_vibration_results(r, s.vibration);
   add_fatigue_results(r, s.fatigue);
@@ -97,6 +111,7 @@ RunSummary summary_of(const LinkageRun& r) {
                .extra = {{"max_abs_drive_effort", r.max_abs_drive_effort}}};
   if (!r.results.frames.empty() && !r.results.frames.front().chains.empty())
     s.extra.push_back({"min_chain_tension_n", r.min_chain_tension_n});
+  add_contact_results(s, r.parts);
   add_assembly_results(s, r.assembly);
   add_vibration_results(s, r.vibration);
   add_fatigue_results(s, r.fatigue);
