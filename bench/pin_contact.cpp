@@ -23,11 +23,11 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/loads/link_contact.hpp"
 #include "kinetofem/loads/link_stress_history.hpp"
-#include "kinetofem/mechanisms/motion_law.hpp"
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/meshes/lever.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
+#include "kinetofem/testing/pendulum_links.hpp"
 
 namespace {
 
@@ -50,28 +50,6 @@ fem::FeModel lever_model(double element_size_m) {
   return model;
 }
 
-mech::MultibodyModel turning_lever(const fem::FeModel& model) {
-  mech::MultibodyModel m;
-  m.name = "turning lever";
-  m.characteristic_length_m = 0.5;
-  m.gravity = {0.0, -9.81};
-  mech::Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  mech::Body lever;
-  lever.name = "lever";
-  loads::assign_mass_properties(lever, model);
-  lever.point_masses.push_back({"mass", 40.0, {0.5, 0.0}});
-  m.bodies = {ground, lever};
-  m.joints.push_back({"A0", mech::JointType::Revolute, "ground", "origin", "lever", "origin"});
-  mech::MotionDrive d;
-  d.name = "drive";
-  d.coordinate = {mech::CoordinateType::Angle, "ground", "origin", "lever", "origin", {1, 0}};
-  d.law = std::make_shared<mech::CycloidalLaw>(2 * std::numbers::pi, 2.0);
-  m.motion_drives = {d};
-  return m;
-}
-
 std::vector<mech::Frame> frames(const mech::MultibodyModel& model, int count) {
   std::vector<double> t;
   for (int k = 0; k < count; ++k) t.push_back(2.0 * k / (count - 1));
@@ -81,8 +59,8 @@ std::vector<mech::Frame> frames(const mech::MultibodyModel& model, int count) {
 double stress_over_motion_seconds(const fem::FeModel& model, const mech::MultibodyModel& mechanism,
                                   const std::vector<mech::Frame>& motion, loads::BoreLoad load, const Log& log) {
   Stopwatch clock;
-  loads::LinkDefinition link{"lever", &model, {{"A0", "bore_A0", load, 15e-6}}, {{"mass", "bore_A"}},
-                             {{"drive", "bore_A0"}}};
+  loads::LinkDefinition link{"link", &model, {{"J1", "bore_A0", load, 15e-6}}, {{"mass", "bore_A"}},
+                             {{"D1", "bore_A0"}}};
   const loads::LinkLoads link_loads(link, mechanism);
   fem::LinearStaticAnalysis analysis(model, log);
   const loads::LinkEnvelope env = loads::analyse_link_over_motion(analysis, link_loads, motion, log);
@@ -105,15 +83,15 @@ int main(int argc, char** argv) {
               "ratio", "set-up [s]", "per pose [ms]");
   for (const double h : sizes_mm) {
     const fem::FeModel model = lever_model(h * 1e-3);
-    const mech::MultibodyModel mechanism = turning_lever(model);
+    const mech::MultibodyModel mechanism = testing::turning_link(model, {0.5, 0.0}, 40.0, 2.0);
     std::printf("  element size %.0f mm: 101 output times\n", h);
     const auto motion = frames(mechanism, 101);
     const double coupling = stress_over_motion_seconds(model, mechanism, motion, loads::BoreLoad::DistributingCoupling, log);
     const double contact = stress_over_motion_seconds(model, mechanism, motion, loads::BoreLoad::Contact, log);
     // The contact alone at 10 000 output times.
     const auto many = frames(mechanism, 10000);
-    loads::LinkDefinition link{"lever", &model, {{"A0", "bore_A0", loads::BoreLoad::Contact, 15e-6}},
-                               {{"mass", "bore_A"}}, {{"drive", "bore_A0"}}};
+    loads::LinkDefinition link{"link", &model, {{"J1", "bore_A0", loads::BoreLoad::Contact, 15e-6}},
+                               {{"mass", "bore_A"}}, {{"D1", "bore_A0"}}};
     const loads::LinkLoads link_loads(link, mechanism);
     fem::LinearStaticAnalysis analysis(model, log);
     const loads::LinkContactHistory history = loads::solve_contact_over_motion(analysis, link_loads, many, log);

@@ -11,6 +11,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "face_integration.hpp"
 #include "kinetofem/solver/element_library.hpp"
 #include "kinetofem/solver/element_traits.hpp"
 #include "kinetofem/core/error.hpp"
@@ -96,6 +97,37 @@ std::vector<char> facing_set(const Eigen::MatrixXd& E, const Eigen::VectorXd& b,
   return set;
 }
 
+// Primal-dual active-set steps from the contact set `set` (updated): on the
+// set lambda from the equality-constrained solve, off it the gaps; a node
+// stays in contact while its lambda > 0 and joins when its gap < 0. Returns
+// the steps taken when the KKT conditions hold (to the tolerances), 0 when
+// it has not settled in `max_steps`, cycles, or meets a singular block.
+int active_set(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E, const Eigen::VectorXd& r,
+               const ContactScales& s, const ContactSolverOptions& options, int max_steps, std::vector<char>& set,
+               Eigen::VectorXd& lambda, Eigen::VectorXd& q) {
+  const double gap_tolerance = options.tolerance * s.gap, force_tolerance = options.tolerance * s.force;
+  std::set<std::vector<char>> seen;
+  for (int step = 1; step <= max_steps; ++step) {
+    if (!solve_on_set(A, b, E, r, set, lambda, q)) return 0;
+    const Eigen::VectorXd g = A * lambda + b - E * q;
+    std::vector<char> next(set.size());
+    bool optimal = (E.transpose() * lambda - r).norm() <= options.tolerance * std::max(r.norm(), s.force);
+    for (Index i = 0; i < A.rows(); ++i) {
+      if (set[size_t(i)]) {
+        next[size_t(i)] = lambda[i] > 0;
+        optimal = optimal && lambda[i] >= -force_tolerance;
+      } else {
+        next[size_t(i)] = g[i] < 0;
+        optimal = optimal && g[i] >= -gap_tolerance;
+      }
+    }
+    if (optimal) return step;
+    if (!seen.insert(set).second) return 0;  // cycling
+    set = std::move(next);
+  }
+  return 0;
+}
+
 // Primal-dual interior point method for the QP (the fallback): Mehrotra's
 // predictor-corrector on A lambda + b - E q - g = 0, E^T lambda = r,
 // lambda_i g_i = sigma mu, with the fraction-to-the-boundary rule.
@@ -167,36 +199,14 @@ ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
   require(start.empty() || Index(start.size()) == m, "contact: the starting contact set has {} entries for {} nodes",
           start.size(), m);
   const ContactScales s = scales_of(A, b, E, r);
-  const double gap_tolerance = options.tolerance * s.gap, force_tolerance = options.tolerance * s.force;
 
   ContactSolution out;
   std::vector<char> set = start.empty() ? facing_set(E, b, r) : start;
-  std::set<std::vector<char>> seen;
   Eigen::VectorXd lambda, q;
-  bool converged = false;
-  for (int step = 1; step <= options.max_active_set_steps; ++step) {
-    out.active_set_steps = step;
-    if (!solve_on_set(A, b, E, r, set, lambda, q)) break;  // the fallback decides
-    const Eigen::VectorXd g = A * lambda + b - E * q;
-    std::vector<char> next(set.size());
-    bool optimal = (E.transpose() * lambda - r).norm() <= options.tolerance * std::max(r.norm(), s.force);
-    for (Index i = 0; i < m; ++i) {
-      if (set[size_t(i)]) {
-        next[size_t(i)] = lambda[i] > 0;
-        optimal = optimal && lambda[i] >= -force_tolerance;
-      } else {
-        next[size_t(i)] = g[i] < 0;
-        optimal = optimal && g[i] >= -gap_tolerance;
-      }
-    }
-    if (optimal) {
-      converged = true;
-      break;
-    }
-    if (!seen.insert(set).second) break;  // cycling: the fallback decides
-    set = std::move(next);
-  }
+  out.active_set_steps = active_set(A, b, E, r, s, options, options.max_active_set_steps, set, lambda, q);
+  const bool converged = out.active_set_steps > 0;
   if (!converged) {
+    out.active_set_steps = options.max_active_set_steps;
     Eigen::VectorXd g;
     const bool ok = interior_point(A, b, E, r, s, options, lambda, q, g, out.interior_point_steps);
     require(ok,
@@ -207,29 +217,11 @@ ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
     // to the solution, so it settles in a step or two), solved exactly.
     std::vector<char> polished(static_cast<size_t>(m), 0);
     for (Index i = 0; i < m; ++i) polished[size_t(i)] = lambda[i] * s.gap > g[i] * s.force;
-    for (int step = 1; step <= options.max_polish_steps; ++step) {
-      Eigen::VectorXd lambda_exact, q_exact;
-      if (!solve_on_set(A, b, E, r, polished, lambda_exact, q_exact)) break;
-      const Eigen::VectorXd g_exact = A * lambda_exact + b - E * q_exact;
-      bool optimal =
-          (E.transpose() * lambda_exact - r).norm() <= options.tolerance * std::max(r.norm(), s.force);
-      std::vector<char> next(polished.size());
-      for (Index i = 0; i < m; ++i) {
-        if (polished[size_t(i)]) {
-          next[size_t(i)] = lambda_exact[i] > 0;
-          optimal = optimal && lambda_exact[i] >= -force_tolerance;
-        } else {
-          next[size_t(i)] = g_exact[i] < 0;
-          optimal = optimal && g_exact[i] >= -gap_tolerance;
-        }
-      }
-      if (optimal) {
-        lambda = lambda_exact;
-        q = q_exact;
-        out.polished = true;
-        break;
-      }
-      polished = std::move(next);
+    Eigen::VectorXd lambda_exact, q_exact;
+    if (active_set(A, b, E, r, s, options, options.max_polish_steps, polished, lambda_exact, q_exact) > 0) {
+      lambda = lambda_exact;
+      q = q_exact;
+      out.polished = true;
     }
   }
   // Round-off may leave a node of the contact set at -1e-17 N: no tension.
@@ -242,23 +234,6 @@ ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
   out.resultant_error = (E.transpose() * out.pressure - r).norm() / std::max(r.norm(), s.force);
   return out;
 }
-
-namespace {
-
-// The linear face of a face type's corners (its corner functions L_c).
-FaceType corner_face(FaceType type) {
-  switch (type) {
-    case FaceType::Tri3:
-    case FaceType::Tri6:
-      return FaceType::Tri3;
-    case FaceType::Quad4:
-    case FaceType::Quad8:
-      return FaceType::Quad4;
-  }
-  return FaceType::Tri3;  // unreachable for a valid enum value
-}
-
-}  // namespace
 
 BoreContactSurface::BoreContactSurface(const Mesh& mesh, const std::string& face_set,
                                        const Eigen::Vector3d& axis_point_m, const Eigen::Vector3d& axis_direction)
@@ -309,25 +284,19 @@ BoreContactSurface::BoreContactSurface(const Mesh& mesh, const std::string& face
   }
   // M_ac = integral of N_a L_c over the faces (Gauss rule of the face type).
   force_map_ = Eigen::MatrixXd::Zero(Index(nodes_.size()), Index(corners_.size()));
-  Eigen::VectorXd N, L;
-  Eigen::MatrixXd dN, dL;
-  for (const auto& block : faces) {
-    const int n = face_facts(block.type).nodes, corners = face_facts(block.type).corners;
-    for (Index f = 0; f < block.size(); ++f) {
-      const auto nodes = block.face(f);
-      Eigen::MatrixXd X(n, 3);
-      for (int a = 0; a < n; ++a) X.row(a) = mesh.nodes.row(nodes[size_t(a)]);
-      for (const auto& qp : quadrature(block.type)) {
-        shape_functions(block.type, qp.xi, N, dN);
-        shape_functions(corner_face(block.type), qp.xi, L, dL);
-        const Eigen::Vector3d t1 = X.transpose() * dN.col(0), t2 = X.transpose() * dN.col(1);
-        const double dA = qp.weight * t1.cross(t2).norm();
-        for (int a = 0; a < n; ++a)
-          for (int c = 0; c < corners; ++c)
+  Eigen::VectorXd L;
+  Eigen::MatrixXd dL;
+  detail::for_each_face_quadrature_point(
+      mesh, faces,
+      [&](std::span<const Index> nodes, const Eigen::Vector3d& xi, const Eigen::VectorXd& N, const Eigen::Vector3d&,
+          double dA) {
+        // Triangles (3 or 6 nodes) have 3 corners, quadrilaterals (4 or 8) 4.
+        const FaceType linear = nodes.size() % 3 == 0 ? FaceType::Tri3 : FaceType::Quad4;
+        shape_functions(linear, xi, L, dL);
+        for (Index a = 0; a < N.size(); ++a)
+          for (Index c = 0; c < L.size(); ++c)
             force_map_(node_row[size_t(nodes[size_t(a)])], corner_column[size_t(nodes[size_t(c)])]) += N[a] * L[c] * dA;
-      }
-    }
-  }
+      });
   const Index count = Index(nodes_.size()), m = Index(corners_.size());
   normals_.resize(count, 3);
   Eigen::Matrix<double, Eigen::Dynamic, 4> node_pin(count, 4);

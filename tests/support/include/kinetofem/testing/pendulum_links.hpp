@@ -74,21 +74,24 @@ inline mech::MultibodyModel double_pendulum() {
   return m;
 }
 
-// One such link turned slowly through a full turn about its first bore (a
-// 40 kg mass at the far bore): in the link's frame its weight, and so the
-// pin's force on the bore, turns once about the pin.
-inline mech::MultibodyModel turning_link(double turn_time_s = 20.0) {
+// A link (mass properties from `model`, its pin at the body origin) turned
+// through a full turn about that pin in `turn_time_s` (cycloidal law) under
+// gravity, a point mass "mass" of `mass_kg` at `far_point_m`: in the link's
+// frame its weight, and so the pin's force on the bore, turns once about the
+// pin. Joint "J1" (ground, link), drive "D1".
+inline mech::MultibodyModel turning_link(const fem::FeModel& model, const Eigen::Vector2d& far_point_m, double mass_kg,
+                                         double turn_time_s) {
   mech::MultibodyModel m;
   m.name = "turning link";
-  m.characteristic_length_m = 0.3;
+  m.characteristic_length_m = far_point_m.norm();
   m.gravity = {0.0, -9.81};
   mech::Body ground;
   ground.name = "ground";
   ground.fixed = true;
   mech::Body link;
   link.name = "link";
-  loads::assign_mass_properties(link, two_bore_link_model());
-  link.point_masses.push_back({"mass", 40.0, {0.24, 0.0}});
+  loads::assign_mass_properties(link, model);
+  link.point_masses.push_back({"mass", mass_kg, far_point_m});
   m.bodies = {ground, link};
   m.joints.push_back({"J1", mech::JointType::Revolute, "ground", "origin", "link", "origin"});
   mech::MotionDrive d;
@@ -98,6 +101,9 @@ inline mech::MultibodyModel turning_link(double turn_time_s = 20.0) {
   m.motion_drives = {d};
   return m;
 }
+
+// The two-bore link turned slowly (20 s) about its first bore, 40 kg at the other.
+inline mech::MultibodyModel turning_link() { return turning_link(two_bore_link_model(), {0.24, 0.0}, 40.0, 20.0); }
 
 inline std::vector<double> even_times(double end_s, int intervals) {
   std::vector<double> t;
