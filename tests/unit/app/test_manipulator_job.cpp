@@ -21,6 +21,10 @@ std::string coarse_case(const std::string& type, double stroke_deg) {
   return testing::coarse_manipulator_case(type, stroke_deg);
 }
 
+std::string coarse_case_with(const std::string& type, const std::string& extra) {
+  return testing::coarse_manipulator_case(type, 80.0, extra);
+}
+
 RunOptions quiet_options(const std::string& dir) {
   RunOptions options;
   options.output_dir = fs::temp_directory_path() / dir;
@@ -64,6 +68,47 @@ TEST(ManipulatorJob, LeverChainRunWritesEveryLinkOverTheMotion) {
   EXPECT_LT(s.assembly->worst_chain_mismatch, 1e-8);
   EXPECT_GT(s.assembly->static_max_displacement_m, 0.0);
   EXPECT_TRUE(fs::exists(options.output_dir / "m.xdmf"));
+}
+
+TEST(ManipulatorJob, PinsInContactWriteTheirPressureOverTheMotion) {
+  // Every pin in contact (H7/g6): each link's series, envelope and static
+  // field contact_pressure, one table per pin, the summary's pins. The
+  // contact's resultant is the joint reaction at every time (the link's
+  // support carries nothing: the run checks it, 1e-6), the pressure is >= 0
+  // and the envelope is the series' maximum.
+  const CaseFile c = CaseFile::parse(
+      coarse_case_with("lever_chain", "[loads]\nbore_load = \"contact\"\nfit = \"H7/g6\"\n[assembly]\nenabled = false\n"),
+      "case.toml", manipulator_schema());
+  const RunOptions options = quiet_options("kinetofem_manip_contact");
+  const ManipulatorSummary s = run_manipulator(c, options);
+  ASSERT_EQ(s.links.size(), 2u);
+  EXPECT_EQ(s.links[0].contacts.size(), 2u);  // lever: A0 and A
+  EXPECT_EQ(s.links[1].contacts.size(), 1u);  // arm: A (the chain keeps its coupling)
+  for (const auto& link : s.links) {
+    EXPECT_LE(link.worst_support_reaction, 1e-6) << link.body;
+    EXPECT_LE(link.contact_worst_resultant_error, 1e-8) << link.body;
+    for (const auto& pin : link.contacts) {
+      EXPECT_GT(pin.peak_pressure_pa, 0.0) << link.body << " " << pin.joint;
+      EXPECT_NEAR(pin.clearance_m, 0.25 * (9e-6 + 50e-6), 1e-12) << pin.joint;  // H7/g6 at 40 mm: 9 .. 50 um
+    }
+  }
+  const auto file = post::ResultsFile::open(options.output_dir / "m.h5");
+  for (const std::string body : {"lever", "arm"}) {
+    const auto envelope = file.read_envelope(body, "contact_pressure");
+    double series_max = 0.0;
+    for (fem::Index k = 0; k < 11; ++k) {
+      const auto p = file.read_step(body, "contact_pressure", k);
+      EXPECT_GE(p.values.minCoeff(), 0.0) << body;
+      series_max = std::max(series_max, p.values.maxCoeff());
+    }
+    EXPECT_DOUBLE_EQ(envelope.values.maxCoeff(), series_max) << body;
+    EXPECT_GT(file.read_static(body, "static_contact_pressure").values.maxCoeff(), 0.0) << body;
+  }
+  for (const char* table : {"contact.lever.A0", "contact.lever.A", "contact.arm.A"}) {
+    const auto t = file.read_table(table);
+    EXPECT_EQ(t.values.rows(), 11) << table;
+    EXPECT_EQ(t.values.cols(), 4) << table;
+  }
 }
 
 TEST(ManipulatorJob, VibrationKeysRunTheModesAndTheResponseOfH) {
