@@ -46,22 +46,22 @@ ContactScales scales_of(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, cons
 }
 
 // The equality-constrained solve on a contact set I: lambda_I, q from
-//   A_II lambda_I - E_I q = -b_I,  E_I^T lambda_I = r.
+//   A_II lambda_I - E_I q = -b_I,  E_I^T lambda_I + C q = r.
 // When E_I cannot carry every component of r (too few nodes in contact,
 // e.g. one line of nodes along the pin), q is the least-squares choice (the
 // pseudo-inverse of the Schur complement): the resultant is then not met
 // and the gaps of that pin motion show which nodes to add. false when A_II
 // is not positive definite.
 bool solve_on_set(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E,
-                  const Eigen::VectorXd& r, const std::vector<char>& in_set, Eigen::VectorXd& lambda,
-                  Eigen::VectorXd& q) {
+                  const Eigen::MatrixXd& C, const Eigen::VectorXd& r, const std::vector<char>& in_set,
+                  Eigen::VectorXd& lambda, Eigen::VectorXd& q) {
   std::vector<Index> idx;
   for (Index i = 0; i < Index(in_set.size()); ++i)
     if (in_set[size_t(i)]) idx.push_back(i);
   const Index n = Index(idx.size()), k = E.cols();
   lambda = Eigen::VectorXd::Zero(A.rows());
   q = Eigen::VectorXd::Zero(k);
-  if (n == 0) return true;
+  if (n == 0 && C.isZero(0.0)) return true;
   Eigen::MatrixXd A_II(n, n), E_I(n, k);
   Eigen::VectorXd b_I(n);
   for (Index a = 0; a < n; ++a) {
@@ -73,7 +73,8 @@ bool solve_on_set(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eige
   if (llt.info() != Eigen::Success) return false;
   const Eigen::MatrixXd Y = llt.solve(E_I);        // A_II^-1 E_I
   const Eigen::VectorXd y = llt.solve(b_I);        // A_II^-1 b_I
-  const Eigen::MatrixXd S = E_I.transpose() * Y;   // k x k, SPD when E_I has full column rank
+  // k x k, SPD when E_I has full column rank (or C is positive definite).
+  const Eigen::MatrixXd S = E_I.transpose() * Y + C;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
   const double cut = 1e-12 * std::max(eig.eigenvalues().maxCoeff(), 1e-300);
   const Eigen::VectorXd inverse =
@@ -102,16 +103,16 @@ std::vector<char> facing_set(const Eigen::MatrixXd& E, const Eigen::VectorXd& b,
 // stays in contact while its lambda > 0 and joins when its gap < 0. Returns
 // the steps taken when the KKT conditions hold (to the tolerances), 0 when
 // it has not settled in `max_steps`, cycles, or meets a singular block.
-int active_set(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E, const Eigen::VectorXd& r,
-               const ContactScales& s, const ContactSolverOptions& options, int max_steps, std::vector<char>& set,
+int active_set(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E, const Eigen::MatrixXd& C,
+               const Eigen::VectorXd& r, const ContactScales& s, const ContactSolverOptions& options, int max_steps, std::vector<char>& set,
                Eigen::VectorXd& lambda, Eigen::VectorXd& q) {
   const double gap_tolerance = options.tolerance * s.gap, force_tolerance = options.tolerance * s.force;
   std::set<std::vector<char>> seen;
   for (int step = 1; step <= max_steps; ++step) {
-    if (!solve_on_set(A, b, E, r, set, lambda, q)) return 0;
+    if (!solve_on_set(A, b, E, C, r, set, lambda, q)) return 0;
     const Eigen::VectorXd g = A * lambda + b - E * q;
     std::vector<char> next(set.size());
-    bool optimal = (E.transpose() * lambda - r).norm() <= options.tolerance * std::max(r.norm(), s.force);
+    bool optimal = (E.transpose() * lambda + C * q - r).norm() <= options.tolerance * std::max(r.norm(), s.force);
     for (Index i = 0; i < A.rows(); ++i) {
       if (set[size_t(i)]) {
         next[size_t(i)] = lambda[i] > 0;
@@ -129,10 +130,10 @@ int active_set(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::
 }
 
 // Primal-dual interior point method for the QP (the fallback): Mehrotra's
-// predictor-corrector on A lambda + b - E q - g = 0, E^T lambda = r,
+// predictor-corrector on A lambda + b - E q - g = 0, E^T lambda + C q = r,
 // lambda_i g_i = sigma mu, with the fraction-to-the-boundary rule.
 bool interior_point(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E,
-                    const Eigen::VectorXd& r, const ContactScales& s, const ContactSolverOptions& options,
+                    const Eigen::MatrixXd& C, const Eigen::VectorXd& r, const ContactScales& s, const ContactSolverOptions& options,
                     Eigen::VectorXd& lambda, Eigen::VectorXd& q, Eigen::VectorXd& g, int& steps) {
   const Index m = A.rows();
   lambda = Eigen::VectorXd::Constant(m, s.force / double(m));
@@ -150,7 +151,7 @@ bool interior_point(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Ei
   };
   for (steps = 1; steps <= options.max_interior_point_steps; ++steps) {
     const Eigen::VectorXd rd = A * lambda + b - E * q - g;
-    const Eigen::VectorXd rp = E.transpose() * lambda - r;
+    const Eigen::VectorXd rp = E.transpose() * lambda + C * q - r;
     const double mu = lambda.dot(g) / double(m);
     if (rd.cwiseAbs().maxCoeff() <= options.tolerance * s.gap &&
         rp.cwiseAbs().maxCoeff() <= options.tolerance * s.force * arm &&
@@ -161,9 +162,9 @@ bool interior_point(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Ei
     const Eigen::LLT<Eigen::MatrixXd> llt(H);
     if (llt.info() != Eigen::Success) return false;
     const Eigen::MatrixXd Y = llt.solve(E);
-    const Eigen::LDLT<Eigen::MatrixXd> schur(E.transpose() * Y);
+    const Eigen::LDLT<Eigen::MatrixXd> schur(E.transpose() * Y + C);
     // Newton direction for the complementarity target lambda_i g_i = t_i:
-    //   (A + G/L) dl - E dq = -rd + (t - lambda g) / lambda,  E^T dl = -rp,
+    //   (A + G/L) dl - E dq = -rd + (t - lambda g) / lambda,  E^T dl + C dq = -rp,
     //   dg = (t - lambda g - g dl) / lambda.
     auto direction = [&](const Eigen::VectorXd& target, Eigen::VectorXd& dl, Eigen::VectorXd& dq,
                          Eigen::VectorXd& dg) {
@@ -192,10 +193,17 @@ bool interior_point(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Ei
 ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E,
                               const Eigen::VectorXd& r, const std::vector<char>& start,
                               const ContactSolverOptions& options) {
+  return solve_contact(A, b, E, Eigen::MatrixXd::Zero(E.cols(), E.cols()), r, start, options);
+}
+
+ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::MatrixXd& E,
+                              const Eigen::MatrixXd& C, const Eigen::VectorXd& r, const std::vector<char>& start,
+                              const ContactSolverOptions& options) {
   const Index m = A.rows();
-  require(A.cols() == m && b.size() == m && E.rows() == m && r.size() == E.cols() && m > 0,
-          "contact: inconsistent problem sizes (A {} x {}, b {}, E {} x {}, r {})", A.rows(), A.cols(), b.size(),
-          E.rows(), E.cols(), r.size());
+  require(A.cols() == m && b.size() == m && E.rows() == m && r.size() == E.cols() && m > 0 &&
+              C.rows() == E.cols() && C.cols() == E.cols(),
+          "contact: inconsistent problem sizes (A {} x {}, b {}, E {} x {}, C {} x {}, r {})", A.rows(), A.cols(),
+          b.size(), E.rows(), E.cols(), C.rows(), C.cols(), r.size());
   require(start.empty() || Index(start.size()) == m, "contact: the starting contact set has {} entries for {} nodes",
           start.size(), m);
   const ContactScales s = scales_of(A, b, E, r);
@@ -203,12 +211,12 @@ ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
   ContactSolution out;
   std::vector<char> set = start.empty() ? facing_set(E, b, r) : start;
   Eigen::VectorXd lambda, q;
-  out.active_set_steps = active_set(A, b, E, r, s, options, options.max_active_set_steps, set, lambda, q);
+  out.active_set_steps = active_set(A, b, E, C, r, s, options, options.max_active_set_steps, set, lambda, q);
   const bool converged = out.active_set_steps > 0;
   if (!converged) {
     out.active_set_steps = options.max_active_set_steps;
     Eigen::VectorXd g;
-    const bool ok = interior_point(A, b, E, r, s, options, lambda, q, g, out.interior_point_steps);
+    const bool ok = interior_point(A, b, E, C, r, s, options, lambda, q, g, out.interior_point_steps);
     require(ok,
             "the contact problem did not converge ({} active-set steps, {} interior-point steps): the resultant "
             "({}) may not be carried by pressure on the bore alone",
@@ -218,7 +226,7 @@ ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
     std::vector<char> polished(static_cast<size_t>(m), 0);
     for (Index i = 0; i < m; ++i) polished[size_t(i)] = lambda[i] * s.gap > g[i] * s.force;
     Eigen::VectorXd lambda_exact, q_exact;
-    if (active_set(A, b, E, r, s, options, options.max_polish_steps, polished, lambda_exact, q_exact) > 0) {
+    if (active_set(A, b, E, C, r, s, options, options.max_polish_steps, polished, lambda_exact, q_exact) > 0) {
       lambda = lambda_exact;
       q = q_exact;
       out.polished = true;
@@ -231,7 +239,7 @@ ContactSolution solve_contact(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
   out.in_contact.resize(size_t(m));
   for (Index i = 0; i < m; ++i) out.in_contact[size_t(i)] = out.pressure[i] > 0;
   out.worst_penetration = std::max(0.0, -out.gap.minCoeff());
-  out.resultant_error = (E.transpose() * out.pressure - r).norm() / std::max(r.norm(), s.force);
+  out.resultant_error = (E.transpose() * out.pressure + C * q - r).norm() / std::max(r.norm(), s.force);
   return out;
 }
 

@@ -76,6 +76,43 @@ TEST(BoreContactSolver, InteriorPointFallbackFindsTheSameSolution) {
   EXPECT_LE((active.pressure - interior.pressure).cwiseAbs().maxCoeff(), 1e-8 * active.pressure.maxCoeff());
 }
 
+TEST(BoreContactSolver, MultipliersThatMeetAStiffness) {
+  // E^T p + C q = r with C symmetric positive definite (a pin's motion that
+  // the rest of a structure resists): q = C^-1 (r - E^T p), so the gaps are
+  // g = (A + E C^-1 E^T) p + b - E C^-1 r and the contact conditions are
+  // those of that reduced problem (analytic elimination). Checked: p >= 0,
+  // g >= 0, p g = 0 (1e-9 of the scales), both constraint forms (1e-10), and
+  // the active set against the forced interior point (1e-8).
+  const RandomProblem p = random_problem(40, 13);
+  Eigen::Matrix4d L;
+  L << 2, 0, 0, 0, 1, 3, 0, 0, 0, 1, 1, 0, 1, 0, 2, 1;
+  // A stiffness (N/m, N m/rad) of the order of the bore's own against the
+  // pin's motion (E^T A^-1 E), so that it moves the answer.
+  const Eigen::DiagonalMatrix<double, 4> S(3e4, 3e4, 3e2, 3e2);
+  const Eigen::Matrix4d C = S * L * L.transpose() * S;
+  const ContactSolution active = solve_contact(p.A, p.b, p.E, C, p.r, {});
+  ContactSolverOptions only_interior;
+  only_interior.max_active_set_steps = 0;
+  const ContactSolution interior = solve_contact(p.A, p.b, p.E, C, p.r, {}, only_interior);
+  EXPECT_GT(interior.interior_point_steps, 0);
+  for (const ContactSolution* s : {&active, &interior}) {
+    const double force = s->pressure.cwiseAbs().maxCoeff(), gap = p.b.cwiseAbs().maxCoeff();
+    const Eigen::Matrix4d Cinv = C.inverse();
+    const Eigen::VectorXd g = (p.A + p.E * Cinv * p.E.transpose()) * s->pressure + p.b - p.E * (Cinv * p.r);
+    EXPECT_GE(s->pressure.minCoeff(), 0.0);
+    EXPECT_GE(g.minCoeff(), -1e-9 * gap);
+    EXPECT_LE(s->pressure.cwiseProduct(g).cwiseAbs().maxCoeff(), 1e-9 * force * gap);
+    EXPECT_LE((g - s->gap).cwiseAbs().maxCoeff(), 1e-10 * gap);
+    EXPECT_LE((p.E.transpose() * s->pressure + C * s->pin_motion - p.r).norm(), 1e-10 * p.r.norm());
+    EXPECT_LE(s->resultant_error, 1e-10);
+  }
+  EXPECT_LE((active.pressure - interior.pressure).cwiseAbs().maxCoeff(), 1e-8 * active.pressure.maxCoeff());
+  // The stiffness changes the answer (the test can fail): without it the
+  // resultant is carried by the pressure alone.
+  const ContactSolution rigid = solve_contact(p.A, p.b, p.E, p.r, {});
+  EXPECT_GT((rigid.pressure - active.pressure).cwiseAbs().maxCoeff(), 1e-3 * active.pressure.maxCoeff());
+}
+
 TEST(BoreContactSolver, AWarmStartGivesTheSameSolutionInFewerSteps) {
   const RandomProblem p = random_problem(48, 11);
   const ContactSolution cold = solve_contact(p.A, p.b, p.E, p.r, {});

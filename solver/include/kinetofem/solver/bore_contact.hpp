@@ -67,7 +67,7 @@ struct ContactSolution {
   int interior_point_steps = 0;  // 0 unless the fallback ran
   bool polished = false;         // the fallback's contact set solved exactly (else its own solution)
   double worst_penetration = 0.0;  // max(0, -min g)
-  double resultant_error = 0.0;    // |E^T p - r| / max(|r|, the problem's force scale)
+  double resultant_error = 0.0;    // |E^T p + C q - r| / max(|r|, the problem's force scale)
 };
 
 // Solves the QP of the header. `in_contact` (size m, or empty): the starting
@@ -78,6 +78,16 @@ struct ContactSolution {
 ContactSolution solve_contact(const Eigen::MatrixXd& compliance, const Eigen::VectorXd& free_gap,
                               const Eigen::MatrixXd& rigid_pin_map, const Eigen::VectorXd& resultant,
                               const std::vector<char>& in_contact, const ContactSolverOptions& options = {});
+// The same with multipliers that meet a stiffness: E^T p + C q = r, C (k x
+// k) symmetric positive semi-definite, i.e. the saddle point of
+// 1/2 p^T A p + b^T p - q^T (E^T p - r) - 1/2 q^T C q over p >= 0 and q.
+// The elastic assembly's pins (structure/assembly_contact.hpp): q the
+// pins' motions in their bores, released from the structure, whose other
+// members resist them by C when it is statically indeterminate.
+ContactSolution solve_contact(const Eigen::MatrixXd& compliance, const Eigen::VectorXd& free_gap,
+                              const Eigen::MatrixXd& rigid_pin_map, const Eigen::MatrixXd& motion_stiffness,
+                              const Eigen::VectorXd& resultant, const std::vector<char>& in_contact,
+                              const ContactSolverOptions& options = {});
 
 // The contact surface of one bore: its corner nodes (the pressure's), its
 // nodes (the forces'), and the maps of the header.
