@@ -12,27 +12,6 @@ namespace kinetofem::pipeline {
 
 namespace {
 
-// A moving part: its 3-2-1 support; the frame (a part of the ground): its
-// foundation.
-fem::FeModel with_support(const Part& part) {
-  fem::FeModel supported = part.model;
-  if (!part.held_face.empty()) {
-    supported.supports = structure::foundation_support(part);
-    return supported;
-  }
-  // Any node but those of a bore a pin is in contact with (a contact node
-  // must be free to move against the pin).
-  std::vector<char> on_contact_bore(size_t(supported.mesh.node_count()), 0);
-  for (const auto& j : part.attachments.joints)
-    if (j.distribution == loads::BoreLoad::Contact)
-      for (const fem::Index n : fem::nodes_of_faces(supported.mesh.face_set(j.face_set))) on_contact_bore[size_t(n)] = 1;
-  std::vector<fem::Index> candidates;
-  for (fem::Index i = 0; i < supported.mesh.node_count(); ++i)
-    if (!on_contact_bore[size_t(i)]) candidates.push_back(i);
-  supported.supports = fem::three_two_one_support(supported.mesh, candidates);
-  return supported;
-}
-
 // The contact pressure at every node of the mesh (0 off the bores).
 post::FieldMatrix nodal_contact_pressure(const loads::LinkContactHistory& contact, Eigen::Index step, fem::Index nodes) {
   post::FieldMatrix p = post::FieldMatrix::Zero(nodes, 1);
@@ -104,7 +83,7 @@ void write_load_patterns(post::BodyWriter& body, loads::LinkLoadPatterns& patter
 }  // namespace
 
 SupportedPart::SupportedPart(const Part& part, const fem::StaticSolverOptions& solver, const Log& log)
-    : model_(with_support(part)) {
+    : model_(structure::supported_model(part)) {
   log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", part.body());
   analysis_ = std::make_unique<fem::LinearStaticAnalysis>(model_, log, solver);
 }

@@ -7,10 +7,12 @@
 #include <cmath>
 
 #include <Eigen/Dense>
+#include <fmt/ranges.h>
 #include <Eigen/Geometry>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/loads/iso_fit.hpp"
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
 #include "kinetofem/mechanisms/multibody/system.hpp"
@@ -120,6 +122,23 @@ struct ElasticAssembly::Impl {
     Eigen::MatrixXd Zp, SG, Sp, GtZp;  // GtZp = G^T Z_p (6m x p)
     Eigen::MatrixXd stress_block;      // add_fields' 6N x poses buffer, reused
     Eigen::Matrix<double, 6, Eigen::Dynamic> Rp;
+    // Pins in contact with its bores (Impl::contact_bores indices, interface
+    // order) and their mP corners. With H = F_c - G X (F_c: the corners' unit
+    // pressures as nodal forces; X, 6m x mP: their resultants on the bores'
+    // couplings, so H p is self-equilibrated): HKH = H^T K_s^-1 H, HKG =
+    // H^T K_s^-1 G, FcZp = F_c^T Z_p (superposed), FcT: F_c^T of columns.
+    std::vector<int> contact_bores;
+    Eigen::Index contact_corners = 0, first_contact_corner = 0;  // first: among all the assembly's corners
+    Eigen::MatrixXd contact_resultants;  // X, 6m x mP (body axes, about each interface's reference)
+    Eigen::MatrixXd HKH, HKG, FcZp;
+  };
+  // A bore of an elastic part that its joint's pin is in contact with.
+  struct ContactBore {
+    int iface = -1, part = -1, joint = -1;  // its coupling interface, part, model joint
+    double clearance_m = 0.0;               // radial
+    std::unique_ptr<fem::BoreContactSurface> surface;  // axis through the interface's reference, along z
+    Eigen::Index first = 0;                 // first corner among its part's
+    Eigen::Matrix<double, 6, Eigen::Dynamic> resultant;  // per corner: its unit pressure's resultant about the reference
   };
   struct JointData {
     int joint = -1;
@@ -167,6 +186,9 @@ struct ElasticAssembly::Impl {
   std::vector<DriveData> drives;
   std::vector<PinData> pins;
   std::vector<PointData> points;
+  std::vector<ContactBore> contact_bores;
+  Eigen::Index contact_corners = 0;  // all bores
+  std::vector<char> contact_set;     // the last pose's, the next one's start
   AssemblyStatistics stats;
 
   Impl(const std::vector<Part>& given, const mech::MultibodyModel& m, AssemblyOptions o, const Log& l,
@@ -203,6 +225,15 @@ struct ElasticAssembly::Impl {
   int add_drive_side(int body, const std::string& drive);
   // Adds a tracked point with its interface.
   void add_point(const AssemblyPoint& tp);
+  // The bores whose pins are in contact (the parts' joint attachments), after
+  // every interface is added.
+  void find_contact_bores();
+  // A part's contact operators HKH, HKG, FcZp (its factor: m solves).
+  void set_up_contact(PartData& part);
+  // F_c^T U of a part's contact corners for displacement columns U (3N x k).
+  Eigen::MatrixXd contact_normal_components(const PartData& part, const Eigen::MatrixXd& U) const;
+  // F_c P: the nodal forces of a part's corner pressures (mP x k) as 3N x k.
+  Eigen::MatrixXd contact_forces(const PartData& part, const Eigen::Ref<const Eigen::MatrixXd>& pressure) const;
 
   int body_index(const std::string& name, const std::string& who) const {
     for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -383,9 +414,12 @@ struct ElasticAssembly::Impl {
   struct FieldInputs {
     std::vector<Eigen::VectorXd> lambda_body;
     std::vector<Vector3d> translation, rotation;
+    std::vector<Eigen::VectorXd> contact_pressure;  // per part with pins in contact: its corners' (Pa)
   };
-  // interface_load_displacement: per part G^T Z_f (6m, body axes).
+  // interface_load_displacement: per part G^T Z_f (6m, body axes);
+  // contact_load_gap: per part with pins in contact, H^T Z_f (mP).
   PoseSolution solve_pose(const mech::Frame& frame, const std::vector<Eigen::VectorXd>& interface_load_displacement,
+                          const std::vector<Eigen::VectorXd>& contact_load_gap,
                           const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs);
   // Unknowns of a pose system, in this order: interface displacements u (6M,
   // world axes), interface loads lambda (6M, world axes), rigid motions alpha
@@ -413,6 +447,13 @@ struct ElasticAssembly::Impl {
     Eigen::VectorXd Dr, Dc, x;
     int rank = 0;
     double residual = 0.0;
+    // Pins in contact: x of the couplings (before the contact), and each
+    // contact bore's pin motion delta in it (4 per bore: x, y, about x,
+    // about y; body axes).
+    Eigen::VectorXd x_coupling, pin_motion;
+    // Per interface (6M, world): where the pin's end sits relative to it,
+    // Delta delta at a bore in contact (empty without contact).
+    Eigen::VectorXd release;
     // Displacement of interface k (world axes); zero for the ground (k < 0).
     Vector6d u_of(int k) const { return k >= 0 ? Vector6d(x.segment<6>(at.ou + 6 * k)) : Vector6d::Zero(); }
     // Load on interface k (world axes); zero for the ground (k < 0).
@@ -448,6 +489,10 @@ struct ElasticAssembly::Impl {
   static Vector12d pin_motion(const PoseMembers::PinPose& pp, const PoseUnknowns& solved) {
     Vector12d u;
     u << solved.u_of(pp.if_i), solved.u_of(pp.if_j);
+    if (solved.release.size() > 0) {  // an end released in its bore (a pin in contact)
+      if (pp.if_i >= 0) u.head<6>() += solved.release.segment<6>(6 * pp.if_i);
+      if (pp.if_j >= 0) u.tail<6>() += solved.release.segment<6>(6 * pp.if_j);
+    }
     return u;
   }
   // Every elastic pin's loads, stresses and deflection.
@@ -465,6 +510,11 @@ struct ElasticAssembly::Impl {
   // What the fields need (add_fields): per part its interface loads and rigid
   // motion in body axes.
   void collect_field_inputs(const Pose& pose, const PoseUnknowns& solved, FieldInputs& field_inputs) const;
+  // The pins in contact of a solved pose (the couplings' solution `solved`,
+  // whose x becomes the contact's): p, delta and the record in `out`.
+  void solve_contact_pose(const mech::Frame& frame, const Pose& pose, const PoseMembers& members,
+                          const std::vector<Eigen::VectorXd>& contact_load_gap, PoseUnknowns& solved,
+                          PoseSolution& out, Eigen::VectorXd& pressure);
   // The parts' fields of a block of solved poses: u = Z_G lambda + Z_f +
   // rigid, von Mises from S_G lambda + S_p c (superposed) or recovered, as
   // block products over the poses (not one matrix-vector product per pose).
@@ -510,6 +560,7 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   check_pin_options();
   for (size_t d = 0; d < model.motion_drives.size(); ++d) add_drive(d);
   for (const AssemblyPoint& tp : options.points) add_point(tp);
+  find_contact_bores();
   for (const auto& part : parts)
     require(!part->held || !part->interfaces.empty(),
             "{}: no joint, chain or drive of the mechanism acts on the frame (body '{}'): name the frame's bores in "
@@ -545,16 +596,10 @@ void ElasticAssembly::Impl::add_part(const Part& part, fem::LinearStaticAnalysis
           data->label, part.held_face, data->body);
   require(part_of_body[size_t(data->body_index)] < 0, "{}: body '{}' has two parts", data->label, data->body);
   part_of_body[size_t(data->body_index)] = int(parts.size());
-  data->supported = part.model;
+  if (data->held) (void)foundation_support(part);  // a frame part needs its held_face: an Error naming it
+  data->supported = supported_model(part);
   data->attachments = part.attachments;
   data->attachments.body = part.body();
-  if (data->held) {
-    data->supported.supports = foundation_support(part);
-  } else {
-    std::vector<fem::Index> all(size_t(data->supported.mesh.node_count()));
-    for (size_t i = 0; i < all.size(); ++i) all[i] = fem::Index(i);
-    data->supported.supports = fem::three_two_one_support(data->supported.mesh, all);
-  }
   if (factor) {
     require_factor_of(data->supported, *factor, data->label);
     data->given_analysis = factor;
@@ -851,8 +896,271 @@ void ElasticAssembly::Impl::set_up_part(PartData& data) {
   Stopwatch clock;
   solve_interface_columns(data);
   if (options.superpose_loads && data.loads->superposable()) set_up_load_patterns(data);
+  set_up_contact(data);
   data.set_up = true;
   stats.setup_seconds += clock.seconds();
+}
+
+// ---------------------------------------------------------------------------
+// Pins in contact (docs/contact.md, "In the elastic assembly").
+
+void ElasticAssembly::Impl::find_contact_bores() {
+  for (size_t p = 0; p < parts.size(); ++p) {
+    PartData& part = *parts[p];
+    const fem::Mesh& mesh = part.supported.mesh;
+    for (const int k : part.interfaces) {
+      const Interface& iface = interfaces[size_t(k)];
+      if (iface.kind != Kind::Joint) continue;
+      const auto attachment = std::find_if(part.attachments.joints.begin(), part.attachments.joints.end(),
+                                           [&](const loads::JointAttachment& a) { return a.joint == iface.name; });
+      if (attachment == part.attachments.joints.end() || attachment->distribution != loads::BoreLoad::Contact) continue;
+      const auto joint = std::find_if(model.joints.begin(), model.joints.end(),
+                                      [&](const mech::Joint& j) { return j.name == iface.name; });
+      require(mech::joint_facts(joint->type).out_of_plane_pin,
+              "{}: joint '{}': contact needs a revolute (pin) joint, not {}", part.label, iface.name,
+              mech::joint_facts(joint->type).name);
+      require(options.coupling == BoreCoupling::Distributing,
+              "{}: joint '{}': a pin in contact needs the distributing couplings (rigid_bore presses every pin into "
+              "its bore)",
+              part.label, iface.name);
+      require(std::isfinite(attachment->clearance_m) && attachment->clearance_m >= 0,
+              "{}: joint '{}': the pin's clearance {} m is negative (an interference fit is not supported)", part.label,
+              iface.name, attachment->clearance_m);
+      ContactBore bore;
+      bore.iface = k;
+      bore.part = int(p);
+      bore.joint = int(joint - model.joints.begin());
+      try {
+        // The normals radial from the bore's own axis (through its coupling's
+        // centroid, as in the per-link analysis), not from the joint point
+        // (the mesh's bore may sit a round-off off it); the resultants and
+        // the pin's motion are about the interface's reference.
+        bore.surface = std::make_unique<fem::BoreContactSurface>(
+            mesh, iface.face_set, part.couplings[size_t(iface.local)]->centroid(), Vector3d::UnitZ());
+        bore.clearance_m = attachment->fit.empty()
+                               ? attachment->clearance_m
+                               : loads::fit_clearance(attachment->fit, 2.0 * bore.surface->radius_m()).mean_radial_m();
+      } catch (const Error& e) {
+        fail("{}: joint '{}' on face set '{}': {}", part.label, iface.name, iface.face_set, e.what());
+      }
+      if (part.held)
+        for (const fem::DisplacementSupport& held : part.supported.supports)
+          for (const fem::Index n : bore.surface->nodes())
+            require(std::find(held.nodes.begin(), held.nodes.end(), n) == held.nodes.end(),
+                    "{}: the bore of joint '{}' (face set '{}') shares node {} with its {}: a pin in contact needs a "
+                    "bore free to move",
+                    part.label, iface.name, iface.face_set, n, held.label);
+      // Each corner's unit pressure as a resultant about the reference.
+      const fem::BoreContactSurface& surface = *bore.surface;
+      bore.resultant = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, surface.size());
+      for (size_t a = 0; a < surface.nodes().size(); ++a) {
+        const Vector3d n = surface.normals().row(Eigen::Index(a)).transpose();
+        const Vector3d arm = mesh.nodes.row(surface.nodes()[a]).transpose() - iface.reference;
+        for (Eigen::Index c = 0; c < surface.size(); ++c) {
+          const double w = surface.force_map()(Eigen::Index(a), c);
+          bore.resultant.col(c).head<3>() += w * n;
+          bore.resultant.col(c).tail<3>() += w * arm.cross(n);
+        }
+      }
+      bore.first = part.contact_corners;
+      part.contact_corners += surface.size();
+      part.contact_bores.push_back(int(contact_bores.size()));
+      contact_bores.push_back(std::move(bore));
+    }
+    part.first_contact_corner = contact_corners;
+    contact_corners += part.contact_corners;
+  }
+  stats.contact_corners = int(contact_corners);
+}
+
+Eigen::MatrixXd ElasticAssembly::Impl::contact_normal_components(const PartData& part, const Eigen::MatrixXd& U) const {
+  Eigen::MatrixXd out(part.contact_corners, U.cols());
+  for (const int b : part.contact_bores) {
+    const ContactBore& bore = contact_bores[size_t(b)];
+    out.middleRows(bore.first, bore.surface->size()) = bore.surface->weighted_normal_components(U);
+  }
+  return out;
+}
+
+Eigen::MatrixXd ElasticAssembly::Impl::contact_forces(const PartData& part,
+                                                      const Eigen::Ref<const Eigen::MatrixXd>& pressure) const {
+  Eigen::MatrixXd forces = Eigen::MatrixXd::Zero(3 * part.supported.mesh.node_count(), pressure.cols());
+  for (const int b : part.contact_bores) {
+    const ContactBore& bore = contact_bores[size_t(b)];
+    bore.surface->add_forces(pressure.middleRows(bore.first, bore.surface->size()), forces);
+  }
+  return forces;
+}
+
+void ElasticAssembly::Impl::set_up_contact(PartData& part) {
+  if (part.contact_bores.empty()) return;
+  Stopwatch clock;
+  const Eigen::Index mP = part.contact_corners;
+  part.contact_resultants = Eigen::MatrixXd::Zero(part.G.cols(), mP);
+  for (const int b : part.contact_bores) {
+    const ContactBore& bore = contact_bores[size_t(b)];
+    part.contact_resultants.block(6 * interfaces[size_t(bore.iface)].local, bore.first, 6, bore.surface->size()) =
+        bore.resultant;
+  }
+  // F_c^T K_s^-1 F_c in blocks of 64 corners (3N x 64 at a time in memory).
+  Eigen::MatrixXd FKF(mP, mP);
+  for (Eigen::Index first = 0; first < mP; first += 64) {
+    const Eigen::Index k = std::min<Eigen::Index>(64, mP - first);
+    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(mP, k);
+    for (Eigen::Index i = 0; i < k; ++i) unit(first + i, i) = 1.0;
+    FKF.middleCols(first, k) = contact_normal_components(part, solve_columns(*part.analysis, contact_forces(part, unit)));
+  }
+  const Eigen::MatrixXd FZG = contact_normal_components(part, part.ZG);  // F_c^T K_s^-1 G
+  const Eigen::MatrixXd& X = part.contact_resultants;
+  part.HKG = FZG - X.transpose() * part.F;
+  part.HKH = FKF - FZG * X - X.transpose() * FZG.transpose() + X.transpose() * part.F * X;
+  part.HKH = 0.5 * (part.HKH + part.HKH.transpose()).eval();
+  if (part.superposed) part.FcZp = contact_normal_components(part, part.Zp);
+  const double seconds = clock.seconds();
+  stats.contact_setup_seconds += seconds;
+  stats.interface_columns += long(mP);
+  log.detail("elastic assembly: {}: {} contact corners on {} bores, condensed in {:.2f} s", part.label, mP,
+             part.contact_bores.size(), seconds);
+}
+
+void ElasticAssembly::Impl::solve_contact_pose(const mech::Frame& frame, const Pose& pose, const PoseMembers& members,
+                                               const std::vector<Eigen::VectorXd>& contact_load_gap,
+                                               PoseUnknowns& solved, PoseSolution& out, Eigen::VectorXd& pressure) {
+  Stopwatch clock;
+  const PoseLayout& at = solved.at;
+  const Eigen::Index m = contact_corners, nq = 4 * Eigen::Index(contact_bores.size()), n = at.n;
+  // The components the pin carries across its axis: x, y, about x, about y.
+  Eigen::Matrix<double, 6, 4> across = Eigen::Matrix<double, 6, 4>::Zero();
+  across(0, 0) = across(1, 1) = across(3, 2) = across(4, 3) = 1.0;
+  // Unit corner pressures: their self-equilibrated part H p moves every
+  // interface l of their part by (G^T K^-1 H)_l p (rows (a)).
+  Eigen::MatrixXd rhs_p = Eigen::MatrixXd::Zero(n, m);
+  for (const auto& part : parts) {
+    if (part->contact_bores.empty()) continue;
+    const Matrix6d Q = rotate6(pose.R[size_t(part->body_index)]);
+    for (size_t l = 0; l < part->interfaces.size(); ++l)
+      rhs_p.block(at.ou + 6 * part->interfaces[l], part->first_contact_corner, 6, part->contact_corners) =
+          Q * part->HKG.middleCols(6 * Eigen::Index(l), 6).transpose();
+  }
+  // Unit pin motions delta in a bore: the joint's tie rows and its elastic
+  // pin act at the pin's end, u_k + Delta delta (rows (b) and (d)).
+  Eigen::MatrixXd rhs_d = Eigen::MatrixXd::Zero(n, nq);
+  std::vector<Eigen::Matrix<double, 6, 4>> Delta(contact_bores.size());
+  for (size_t b = 0; b < contact_bores.size(); ++b) {
+    const int k = contact_bores[b].iface;
+    Delta[b] = rotate6(pose.R[size_t(interfaces[size_t(k)].body)]) * across;
+    rhs_d.block(at.ol, 4 * Eigen::Index(b), 6 * at.M, 4) -= members.S.middleCols(6 * k, 6) * Delta[b];
+    for (int r = 0; r < at.nc; ++r)
+      rhs_d.block(at.om + r, 4 * Eigen::Index(b), 1, 4) -= members.rows[size_t(r)].segment(6 * k, 6) * Delta[b];
+  }
+  auto solve_scaled = [&](const Eigen::MatrixXd& rhs) -> Eigen::MatrixXd {
+    return solved.Dc.asDiagonal() * solved.lu.solve(solved.Dr.asDiagonal() * rhs);
+  };
+  const Eigen::MatrixXd Xp = solve_scaled(rhs_p), Xd = solve_scaled(rhs_d);
+  const Eigen::VectorXd x0 = solved.x;
+  // What the contact sees of solution columns: the gaps through their parts'
+  // interface loads (H^T K^-1 G lambda_body), and each bore's coupling load
+  // across the axis (body axes).
+  auto gap_of = [&](const Eigen::Ref<const Eigen::MatrixXd>& X) {
+    Eigen::MatrixXd g = Eigen::MatrixXd::Zero(m, X.cols());
+    for (const auto& part : parts) {
+      if (part->contact_bores.empty()) continue;
+      const Matrix6d Q = rotate6(pose.R[size_t(part->body_index)]);
+      Eigen::MatrixXd lambda_body(6 * Eigen::Index(part->interfaces.size()), X.cols());
+      for (size_t l = 0; l < part->interfaces.size(); ++l)
+        lambda_body.middleRows(6 * Eigen::Index(l), 6) = Q.transpose() * X.middleRows(at.ol + 6 * part->interfaces[l], 6);
+      g.middleRows(part->first_contact_corner, part->contact_corners) = part->HKG * lambda_body;
+    }
+    return g;
+  };
+  auto load_of = [&](const Eigen::Ref<const Eigen::MatrixXd>& X) {
+    Eigen::MatrixXd L(nq, X.cols());
+    for (size_t b = 0; b < contact_bores.size(); ++b)
+      L.middleRows(4 * Eigen::Index(b), 4) = Delta[b].transpose() * X.middleRows(at.ol + 6 * contact_bores[b].iface, 6);
+    return L;
+  };
+  Eigen::VectorXd gap = gap_of(x0);
+  Eigen::MatrixXd A = gap_of(Xp), E_gap = -gap_of(Xd), E_force = -load_of(Xp).transpose();
+  Eigen::MatrixXd C = -load_of(Xd);
+  const Eigen::VectorXd r = load_of(x0);
+  for (const auto& part : parts)
+    if (!part->contact_bores.empty()) {
+      const Eigen::Index first = part->first_contact_corner, mP = part->contact_corners;
+      A.block(first, first, mP, mP) += part->HKH;
+      gap.segment(first, mP) += contact_load_gap[size_t(&part - &parts.front())];
+    }
+  for (size_t b = 0; b < contact_bores.size(); ++b) {
+    const ContactBore& bore = contact_bores[b];
+    const Eigen::Index first = parts[size_t(bore.part)]->first_contact_corner + bore.first, mb = bore.surface->size();
+    gap.segment(first, mb) += bore.clearance_m * bore.surface->corner_area_m2();
+    const Eigen::MatrixXd pin_map = (across.transpose() * bore.resultant).transpose();  // mb x 4: the pin's motion as weighted gaps
+    E_gap.block(first, 4 * Eigen::Index(b), mb, 4) += pin_map;
+    E_force.block(first, 4 * Eigen::Index(b), mb, 4) += pin_map;
+  }
+  // Maxwell-Betti: a unit pressure's load on the released pin is the gap a
+  // unit pin motion opens there; the compliance and C are symmetric. A
+  // mismatch beyond round-off is a defect of the model, not of the input.
+  const double E_size = std::max(E_force.cwiseAbs().maxCoeff(), 1e-300);
+  out.contact.reciprocity_error =
+      std::max((E_gap - E_force).cwiseAbs().maxCoeff() / E_size,
+               (A - A.transpose()).cwiseAbs().maxCoeff() / std::max(A.cwiseAbs().maxCoeff(), 1e-300));
+  require(out.contact.reciprocity_error <= 1e-6,
+          "elastic assembly at t = {:.6g} s: the pins' contact responses are not reciprocal ({:.1e}): an internal "
+          "inconsistency, please report it",
+          frame.t, out.contact.reciprocity_error);
+  A = 0.5 * (A + A.transpose()).eval();
+  const Eigen::MatrixXd E = 0.5 * (E_gap + E_force);
+  // C, the structure's stiffness against the pins' motions, is positive
+  // semi-definite; a statically determinate structure has none (round-off).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (C + C.transpose()));
+  C = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+  if (contact_set.size() != size_t(m)) contact_set.clear();
+  fem::ContactSolution solution;
+  try {
+    solution = fem::solve_contact(A, gap, E, C, r, contact_set, options.contact);
+  } catch (const Error& e) {
+    std::vector<std::string> names;
+    for (const ContactBore& bore : contact_bores) names.push_back(model.joints[size_t(bore.joint)].name);
+    fail("elastic assembly at t = {:.6g} s: the pins in contact (joints {}): {}", frame.t, fmt::join(names, ", "),
+         e.what());
+  }
+  contact_set = solution.in_contact;
+  pressure = solution.pressure;
+  solved.pin_motion = solution.pin_motion;
+  solved.x_coupling = x0;
+  solved.x = x0 + Xp * pressure + Xd * solution.pin_motion;
+  solved.release = Eigen::VectorXd::Zero(6 * at.M);
+  for (size_t b = 0; b < contact_bores.size(); ++b)
+    solved.release.segment<6>(6 * contact_bores[b].iface) =
+        Delta[b] * solution.pin_motion.segment<4>(4 * Eigen::Index(b));
+
+  out.contact.corners = int(m);
+  out.contact.in_contact = int(std::count(contact_set.begin(), contact_set.end(), char(1)));
+  out.contact.active_set_steps = solution.active_set_steps;
+  out.contact.interior_point = solution.interior_point_steps > 0;
+  out.contact.resultant_error = solution.resultant_error;
+  for (size_t b = 0; b < contact_bores.size(); ++b) {
+    const ContactBore& bore = contact_bores[b];
+    const PartData& part = *parts[size_t(bore.part)];
+    const Eigen::Index first = part.first_contact_corner + bore.first, mb = bore.surface->size();
+    BoreContactResult result;
+    result.joint = model.joints[size_t(bore.joint)].name;
+    result.body = part.body;
+    result.face_set = bore.surface->face_set();
+    result.clearance_m = bore.clearance_m;
+    result.pressure_pa = pressure.segment(first, mb);
+    result.state = fem::contact_state(*bore.surface, result.pressure_pa);
+    result.pin_motion = solution.pin_motion.segment<4>(4 * Eigen::Index(b));
+    // The mean overlap at a corner (weighted gap over its area).
+    out.contact.worst_penetration_m =
+        std::max(out.contact.worst_penetration_m,
+                 (-solution.gap.segment(first, mb).cwiseQuotient(bore.surface->corner_area_m2())).maxCoeff());
+    out.contacts.push_back(std::move(result));
+  }
+  out.contact.worst_penetration_m = std::max(0.0, out.contact.worst_penetration_m);
+  stats.contact_seconds += clock.seconds();
+  stats.contact_interior_point_poses += out.contact.interior_point ? 1 : 0;
+  stats.most_contact_active_set_steps = std::max(stats.most_contact_active_set_steps, solution.active_set_steps);
 }
 
 // ---------------------------------------------------------------------------
@@ -871,10 +1179,19 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
     for (Eigen::Index f = 0; f < count; ++f) lambda.col(f) = inputs[size_t(f)].lambda_body[p];
     Eigen::MatrixXd elastic = load_displacement[p];
     fem::blas_product(part.ZG, lambda, elastic, 1.0);
+    const bool contact = !part.contact_bores.empty();
+    if (contact) {  // + K_s^-1 F_c p, one block solve (lambda already has - X p)
+      Eigen::MatrixXd pressure(part.contact_corners, count);
+      for (Eigen::Index f = 0; f < count; ++f) pressure.col(f) = inputs[size_t(f)].contact_pressure[p];
+      elastic += solve_columns(*part.analysis, contact_forces(part, pressure));
+    }
     // Kept between blocks: a fresh block of this size is mapped anew and
     // costs more in page faults than the products.
     Eigen::MatrixXd& stress = part.stress_block;
-    if (options.recover_stress && part.superposed) {
+    // A part with pins in contact: its stress recovered pose by pose (the
+    // contact pressure has no fixed patterns).
+    const bool stress_from_patterns = options.recover_stress && part.superposed && !contact;
+    if (stress_from_patterns) {
       if (stress.rows() != part.SG.rows() || stress.cols() < count) stress.resize(part.SG.rows(), count);
       fem::blas_product(part.SG, lambda, stress.leftCols(count));
       fem::blas_product(part.Sp, coefficients[p], stress.leftCols(count), 1.0);
@@ -886,7 +1203,6 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
       PartField field;
       field.body = part.body;
       field.displacement_m.resize(N, 3);
-      const bool stress_from_patterns = options.recover_stress && part.superposed;
       if (stress_from_patterns) field.von_mises_pa.resize(N);
       const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> sv(
           stress_from_patterns ? stress.col(f).data() : nullptr, 6, stress_from_patterns ? N : 0);
@@ -1335,6 +1651,8 @@ void ElasticAssembly::Impl::add_point_results(PoseSolution& out, const Pose& pos
     const Vector6d u = solved.u_of(k);
     pr.displacement_m = u.head<3>();
     pr.rotation_rad = u.tail<3>();
+    pr.coupling_displacement_m =
+        solved.x_coupling.size() > 0 ? Vector3d(solved.x_coupling.segment<3>(solved.at.ou + 6 * k)) : pr.displacement_m;
     if (options.unit_load_split) split_by_unit_loads(pr, k, pose, members, solved);
     out.points.push_back(pr);
   }
@@ -1356,6 +1674,19 @@ void ElasticAssembly::Impl::split_by_unit_loads(PointResult& pr, int k, const Po
   const size_t first_pin = pr.contributions.size();
   for (const auto& pp : members.pin_pose)
     pr.contributions.push_back({"pin." + model.joints[size_t(pins[size_t(pp.pin)].joint)].name, Vector3d::Zero()});
+  // A pin in contact: the virtual tie load at its bore on the pin's motion
+  // there (the release; one entry per joint).
+  std::vector<size_t> play_of_bore;
+  for (const ContactBore& bore : contact_bores) {
+    const std::string name = "play." + model.joints[size_t(bore.joint)].name;
+    auto it = std::find_if(pr.contributions.begin(), pr.contributions.end(),
+                           [&](const PointContribution& c) { return c.name == name; });
+    if (it == pr.contributions.end()) {
+      pr.contributions.push_back({name, Vector3d::Zero()});
+      it = pr.contributions.end() - 1;
+    }
+    play_of_bore.push_back(size_t(it - pr.contributions.begin()));
+  }
   for (int c = 0; c < 3; ++c) {
     Eigen::VectorXd unit = Eigen::VectorXd::Zero(n);
     unit(ol + 6 * k + c) = 1.0;  // (b): lambda_k = e_c, the point's load on its body
@@ -1376,6 +1707,11 @@ void ElasticAssembly::Impl::split_by_unit_loads(PointResult& pr, int k, const Po
       const auto& pp = members.pin_pose[q];
       pr.contributions[first_pin + q].displacement_m(c) =
           pin_motion(pp, virtual_solution).dot(pp.member.stiffness() * pin_motion(pp, solved));
+    }
+    for (size_t b = 0; b < contact_bores.size(); ++b) {
+      const int l = contact_bores[b].iface;
+      pr.contributions[play_of_bore[b]].displacement_m(c) +=
+          xv.segment<6>(ol + 6 * l).dot(solved.release.segment<6>(6 * l));
     }
   }
 }
@@ -1407,6 +1743,7 @@ void ElasticAssembly::Impl::collect_field_inputs(const Pose& pose, const PoseUnk
 
 PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
                                                const std::vector<Eigen::VectorXd>& interface_load_displacement,
+                                               const std::vector<Eigen::VectorXd>& contact_load_gap,
                                                const std::vector<Vector6d>& resultant_world, FieldInputs& field_inputs) {
   Stopwatch clock;
   const Pose pose = pose_of(frame);
@@ -1414,13 +1751,15 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
   const PoseMembers members = members_of(frame, pose);
   const PoseLayout at = layout_of(members);
   const PoseScales scales = scales_of(members, resultant_world);
-  const PoseUnknowns solved = solve_equilibrated(
+  PoseUnknowns solved = solve_equilibrated(
       frame, pose, members, at, scales,
       assemble_pose_system(pose, members, at, interface_load_displacement, resultant_world));
   stats.system_seconds += clock.seconds();
   clock.restart();
 
   PoseSolution out;
+  Eigen::VectorXd pressure;
+  if (!contact_bores.empty()) solve_contact_pose(frame, pose, members, contact_load_gap, solved, out, pressure);
   out.t = frame.t;
   out.unknowns = at.n;
   out.rank = solved.rank;
@@ -1439,6 +1778,14 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
   }
   add_point_results(out, pose, members, solved);
   collect_field_inputs(pose, solved, field_inputs);
+  // A part with pins in contact is loaded by G lambda + H p = G (lambda - X p) + F_c p.
+  field_inputs.contact_pressure.resize(parts.size());
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const PartData& part = *parts[p];
+    if (part.contact_bores.empty()) continue;
+    field_inputs.contact_pressure[p] = pressure.segment(part.first_contact_corner, part.contact_corners);
+    field_inputs.lambda_body[p] -= part.contact_resultants * field_inputs.contact_pressure[p];
+  }
   stats.recovery_seconds += clock.seconds();
   return out;
 }
@@ -1637,10 +1984,26 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
         interface_load_displacement[p].noalias() = part.G.transpose() * load_displacement[p];
       }
     }
+    // H^T Z_f per part with pins in contact: F_c^T Z_f - X^T G^T Z_f.
+    std::vector<Eigen::MatrixXd> contact_load_gap(im.parts.size());
+    for (size_t p = 0; p < im.parts.size(); ++p) {
+      const Impl::PartData& part = *im.parts[p];
+      if (part.contact_bores.empty()) continue;
+      if (part.superposed) {
+        contact_load_gap[p].resize(part.contact_corners, Eigen::Index(count));
+        for (size_t f = 0; f < count; ++f) contact_load_gap[p].col(Eigen::Index(f)) = part.FcZp * coefficients[f][p];
+      } else {
+        contact_load_gap[p] = im.contact_normal_components(part, load_displacement[p]);
+      }
+      contact_load_gap[p] -= part.contact_resultants.transpose() * interface_load_displacement[p];
+    }
     for (size_t f = 0; f < count; ++f) {
-      std::vector<Eigen::VectorXd> d(im.parts.size());
-      for (size_t p = 0; p < im.parts.size(); ++p) d[p] = interface_load_displacement[p].col(Eigen::Index(f));
-      block_poses.push_back(im.solve_pose(frames[first + f], d, resultants[f], inputs[f]));
+      std::vector<Eigen::VectorXd> d(im.parts.size()), h(im.parts.size());
+      for (size_t p = 0; p < im.parts.size(); ++p) {
+        d[p] = interface_load_displacement[p].col(Eigen::Index(f));
+        if (!im.parts[p]->contact_bores.empty()) h[p] = contact_load_gap[p].col(Eigen::Index(f));
+      }
+      block_poses.push_back(im.solve_pose(frames[first + f], d, h, resultants[f], inputs[f]));
       ++im.stats.poses;
     }
     std::vector<Eigen::MatrixXd> block_coefficients(im.parts.size());
@@ -1703,7 +2066,17 @@ void ElasticAssembly::set_up_part(const std::string& body, fem::LinearStaticAnal
   fail("elastic assembly: body '{}' has no elastic part", body);
 }
 
-bool ElasticAssembly::solves_with_factor(const std::string& body) const { return !impl_->part_of(body).superposed; }
+bool ElasticAssembly::solves_with_factor(const std::string& body) const {
+  const Impl::PartData& part = impl_->part_of(body);
+  return !part.superposed || !part.contact_bores.empty();
+}
+
+const fem::BoreContactSurface& ElasticAssembly::contact_surface(const std::string& body, const std::string& joint) const {
+  for (const auto& bore : impl_->contact_bores)
+    if (impl_->parts[size_t(bore.part)]->body == body && impl_->model.joints[size_t(bore.joint)].name == joint)
+      return *bore.surface;
+  fail("elastic assembly: body '{}' has no bore in contact with the pin of joint '{}'", body, joint);
+}
 
 bool ElasticAssembly::is_set_up() const {
   return std::all_of(impl_->parts.begin(), impl_->parts.end(), [](const auto& p) { return p->set_up; });
@@ -1752,9 +2125,9 @@ Eigen::MatrixXd ElasticAssembly::stress_patterns(const std::string& body) const 
   impl_->require_set_up();
   for (const auto& p : impl_->parts)
     if (p->body == body) {
-      require(p->superposed && impl_->options.recover_stress,
-              "elastic assembly: part '{}' has no stress patterns (its loads are not superposed or its stress is not "
-              "recovered)",
+      require(p->superposed && impl_->options.recover_stress && p->contact_bores.empty(),
+              "elastic assembly: part '{}' has no stress patterns (its loads are not superposed, its stress is not "
+              "recovered, or a pin is in contact with it)",
               body);
       Eigen::MatrixXd out(p->SG.rows(), p->SG.cols() + p->Sp.cols());
       out << p->SG, p->Sp;

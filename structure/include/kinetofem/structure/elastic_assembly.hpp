@@ -64,6 +64,24 @@
 //   whose rotation nothing holds, or the joints of a statically
 //   indeterminate loop of rigid bodies. Fields: u = Z_G lambda + Z_f +
 //   rigid(alpha), rotated to world axes.
+//   Pins in contact (a part's joint attachment with loads::BoreLoad::
+//   Contact): frictionless, unilateral contact of a rigid round pin with
+//   that bore, over a radial clearance (docs/contact.md, "In the elastic
+//   assembly"). The joint's tie (or its elastic pin's end) is released at the
+//   bore across the axis (x, y and the tilts about x and y, body axes): the
+//   pin's motion delta in the bore is free, and the contact pressure p >= 0
+//   on the bore's corner functions (fem::BoreContactSurface) carries what the
+//   tie carried there; the force along the axis and the rotation about it
+//   stay as they were. Per pose, on the factorized pose system of the
+//   couplings: p's and delta's responses (one solve of the small system per
+//   corner and per released component), then one QP in p
+//   (fem::solve_contact: A = H^T K^-1 H plus the structure's response, H the
+//   pressure's nodal forces less their resultant on the bore's coupling,
+//   E^T p + C delta = r with C the structure's stiffness against delta,
+//   nonzero when it is statically indeterminate); reciprocity of the two
+//   responses is checked. Each part costs m solves once (m: its contact
+//   corners) and one block solve of its contact forces per block of poses.
+//   The poses' contact sets start from the last pose's.
 //   Unit-load superposition (AssemblyOptions::superpose_loads, default):
 //   f_loads = P c(t) with the fixed load patterns P of loads::LinkLoads, so
 //   Z_f = (K_s^-1 P) c and the stress (S_G lambda + S_p c) come from
@@ -85,6 +103,7 @@
 #include "kinetofem/structure/part.hpp"
 #include "kinetofem/structure/pin_member.hpp"
 #include "kinetofem/solver/assembly.hpp"
+#include "kinetofem/solver/bore_contact.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
 
 namespace kinetofem::structure {
@@ -174,6 +193,8 @@ struct AssemblyOptions {
   // Output times whose fields analyse_assembly_over_motion writes (mask over
   // the motion; empty = all); histories and envelopes cover every one.
   std::vector<bool> field_steps;
+  // The pins in contact: their QP's solver.
+  fem::ContactSolverOptions contact;
 };
 
 // Tag: construct the topology and checks only; each part is set up later
@@ -187,6 +208,27 @@ struct BodyMotion {
   bool elastic = false;
   Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d rotation_rad = Eigen::Vector3d::Zero();
+};
+
+// A pin in contact with a bore of an elastic part in one pose.
+struct BoreContactResult {
+  std::string joint, body, face_set;
+  double clearance_m = 0.0;                    // radial
+  Eigen::VectorXd pressure_pa;                 // per corner (fem::BoreContactSurface order), >= 0
+  fem::BoreContactState state;                 // peak, its angle from the part's x axis, arc, force (body axes)
+  // The pin's motion in the bore relative to the bore's coupling reference
+  // (body axes): x, y (m), rotations about x, y (rad).
+  Eigen::Vector4d pin_motion = Eigen::Vector4d::Zero();
+};
+
+// The contact solve of one pose (every pin in contact together).
+struct ContactRecord {
+  int corners = 0, in_contact = 0;
+  int active_set_steps = 0;
+  bool interior_point = false;       // the fallback ran
+  double worst_penetration_m = 0.0;  // largest mean overlap at a corner left by the solver
+  double resultant_error = 0.0;      // |E^T p + C delta - r| relative (fem::ContactSolution)
+  double reciprocity_error = 0.0;    // |E_gap - E_force| / |E|: Maxwell-Betti of the two responses (round-off)
 };
 
 struct PartField {
@@ -263,8 +305,15 @@ struct PointResult {
   // (world axes, m/N; symmetric by Maxwell-Betti).
   Eigen::Matrix3d compliance_m_per_n = Eigen::Matrix3d::Zero();
   // Every part, chain, compliant drive and elastic pin, in that order (model
-  // order).
+  // order), then with pins in contact each contact joint's "play.<joint>":
+  // the work of the virtual joint loads on the pins' motions in their bores
+  // (their clearance and the contact's local give against the coupling).
   std::vector<PointContribution> contributions;
+  // The same point with couplings at the pins in contact (no clearance, no
+  // contact; the loads' own distribution): displacement_m - this is the
+  // pins' share (clearance and contact). Equal to displacement_m without
+  // pins in contact.
+  Eigen::Vector3d coupling_displacement_m = Eigen::Vector3d::Zero();
 };
 
 // How many joint loads the rigid-body equilibrium of the pose leaves
@@ -286,6 +335,8 @@ struct PoseSolution {
   std::vector<DriveResult> drives;  // motion drives, model order
   std::vector<PinResult> pins;      // elastic pins, model joint order
   std::vector<PointResult> points;  // options.points order
+  std::vector<BoreContactResult> contacts;  // pins in contact: part order, then the part's interface order
+  ContactRecord contact;
   int unknowns = 0, rank = 0;
   double relative_residual = 0.0;   // of the dense system (scaled)
   Indeterminacy indeterminacy;
@@ -329,6 +380,9 @@ struct AssemblyStatistics {
   long part_dofs = 0;          // sum over the parts
   long interface_columns = 0;  // sum of 6 m over the parts (solved once)
   double setup_seconds = 0.0;  // assembly, factorization and interface solves, all parts
+  int contact_corners = 0;     // pins in contact: the pressure's unknowns, all bores
+  double contact_setup_seconds = 0.0, contact_seconds = 0.0;  // condensation (in setup_seconds); the poses' QPs
+  int contact_interior_point_poses = 0, most_contact_active_set_steps = 0;
   double factorize_seconds = 0.0;
   long poses = 0;
   // Sums over every pose solved so far.
@@ -406,6 +460,9 @@ class ElasticAssembly {
   // Error when its loads are not superposed or its stress is not recovered.
   Eigen::MatrixXd stress_patterns(const std::string& body) const;
   const AssemblyStatistics& statistics() const;
+  // The contact surface of the bore of `body`'s part that joint's pin is in
+  // contact with (Error when there is none).
+  const fem::BoreContactSurface& contact_surface(const std::string& body, const std::string& joint) const;
 
  private:
   struct Impl;

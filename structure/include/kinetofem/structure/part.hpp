@@ -58,4 +58,28 @@ inline std::vector<fem::DisplacementSupport> foundation_support(const Part& part
   return {held};
 }
 
+// The part as its static analyses hold it: the frame on its foundation
+// (foundation_support); a moving part by a 3-2-1 support
+// (fem::three_two_one_support: it holds only the rigid motion, so a
+// self-equilibrated load meets no reaction) on any node but those of a bore
+// a pin is in contact with (a contact node must be free to move against the
+// pin, and a held one would have no compliance). The per-part stage and the
+// elastic assembly share a factorization of this very model.
+inline fem::FeModel supported_model(const Part& part) {
+  fem::FeModel supported = part.model;
+  if (!part.held_face.empty()) {
+    supported.supports = foundation_support(part);
+    return supported;
+  }
+  std::vector<char> on_contact_bore(size_t(supported.mesh.node_count()), 0);
+  for (const auto& j : part.attachments.joints)
+    if (j.distribution == loads::BoreLoad::Contact)
+      for (const fem::Index n : fem::nodes_of_faces(supported.mesh.face_set(j.face_set))) on_contact_bore[size_t(n)] = 1;
+  std::vector<fem::Index> candidates;
+  for (fem::Index i = 0; i < supported.mesh.node_count(); ++i)
+    if (!on_contact_bore[size_t(i)]) candidates.push_back(i);
+  supported.supports = fem::three_two_one_support(supported.mesh, candidates);
+  return supported;
+}
+
 }  // namespace kinetofem::structure
