@@ -66,10 +66,10 @@ void add_manipulator_assembly_keys(std::vector<KeySpec>& s) {
 std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFile& c, bool with_chain) {
   namespace names = mech::manipulator;
   if (!c.boolean("assembly.enabled")) return std::nullopt;
-  require(c.text_value("loads.bore_load") != "contact",
-          "{} = \"contact\": the elastic assembly does not model pins in contact yet (it ties them by couplings); set "
-          "assembly.enabled = false for a contact run, or loads.bore_load = \"coupling\"",
-          c.where("loads.bore_load"));
+  require(c.text_value("loads.bore_load") != "contact" || c.text_value("assembly.coupling") != "rigid_bore",
+          "{} = \"rigid_bore\": pins in contact need the distributing couplings (rigid_bore presses every pin into "
+          "its bore); loads.bore_load = \"contact\" is set",
+          c.where("assembly.coupling"));
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
   if (with_chain) {
@@ -189,10 +189,10 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
             c.where("motion_drive[].coordinate", k), c.text_value("motion_drive[].coordinate", k),
             c.text_value("motion_drive[].name", k));
   for (std::size_t k = 0; k < c.count("joint"); ++k)
-    require(c.text_value("joint[].load", k) != "contact",
-            "{} = \"contact\": joint '{}': the elastic assembly does not model pins in contact yet (it ties them by "
-            "couplings); set assembly.enabled = false for a contact run, or load = \"coupling\"",
-            c.where("joint[].load", k), c.text_value("joint[].name", k));
+    require(c.text_value("joint[].load", k) != "contact" || c.text_value("assembly.coupling") != "rigid_bore",
+            "{} = \"rigid_bore\": pins in contact need the distributing couplings (rigid_bore presses every pin "
+            "into its bore); joint '{}' has load = \"contact\"",
+            c.where("assembly.coupling"), c.text_value("joint[].name", k));
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
   for (std::size_t k = 0; k < c.count("joint"); ++k) {

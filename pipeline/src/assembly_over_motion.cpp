@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -39,14 +40,21 @@ Eigen::Vector2d in_plane_eigenvalues(const Eigen::Matrix3d& C) {
 }
 
 struct BodyEnvelope {
-  Eigen::VectorXd max_u, max_vm;
-  post::IndexMatrix step_u, step_vm;
+  Eigen::VectorXd max_u, max_vm, max_p;  // max_p: pins in contact only
+  post::IndexMatrix step_u, step_vm, step_p;
 };
+
+// Whether a pin is in contact with a bore of the part.
+bool has_pins_in_contact(const structure::Part& part) {
+  return std::any_of(part.attachments.joints.begin(), part.attachments.joints.end(),
+                     [](const loads::JointAttachment& j) { return j.distribution == loads::BoreLoad::Contact; });
+}
 
 // Records the solved poses of a motion into the results file and the
 // summary: the parts' fields and envelopes, the histories of the tracked
 // points, chains and drives (rows: output times), the static study.
 struct AssemblyRecorder {
+  const ElasticAssembly& assembly;
   const std::vector<structure::Part>& parts;
   const AssemblyOptions& options;
   post::ResultsWriter& writer;
@@ -67,17 +75,19 @@ struct AssemblyRecorder {
   std::vector<std::string> chain_names, drive_names;
   std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
   std::vector<post::FieldMatrix> pin_bending, pin_shear, pin_deflection;  // per elastic pin (summary.pins order)
+  std::vector<post::FieldMatrix> contact_table;    // per pin in contact (summary.contacts order), T x 6
+  std::vector<post::FieldMatrix> point_coupling;   // per point: its displacement with couplings (pins in contact)
   // Per part, its stress at every output time (AssemblyOptions::keep_part_stress), or none.
   std::vector<PartStressHistory>* stress_histories = nullptr;
 
-  AssemblyRecorder(const std::vector<structure::Part>& parts_, const mech::MultibodyModel& model,
-                   post::ResultsWriter& writer_, const AssemblyOptions& options_, size_t output_times,
-                   AssemblySummary& summary_)
-      : parts(parts_), options(options_), writer(writer_), summary(summary_), T(output_times),
+  AssemblyRecorder(const ElasticAssembly& assembly_, const std::vector<structure::Part>& parts_,
+                   const mech::MultibodyModel& model, post::ResultsWriter& writer_, const AssemblyOptions& options_,
+                   size_t output_times, AssemblySummary& summary_)
+      : assembly(assembly_), parts(parts_), options(options_), writer(writer_), summary(summary_), T(output_times),
         P(options_.points.size()), envelopes(parts_.size()), part_body(parts_.size()), max_u(output_times, 1),
         point_u(P, post::FieldMatrix(output_times, 3)), point_mag(P, post::FieldMatrix(output_times, 1)),
         point_rot(P, post::FieldMatrix(output_times, 3)), point_compliance(P, post::FieldMatrix(output_times, 9)),
-        point_from(P), point_from_names(P) {
+        point_from(P), point_from_names(P), point_coupling(P, post::FieldMatrix(output_times, 3)) {
     begin_part_bodies(model);
     for (size_t i = 0; i < P; ++i) {
       summary.points.push_back({.name = options.points[i].name, .body = options.points[i].body});
@@ -91,15 +101,20 @@ struct AssemblyRecorder {
       const fem::Mesh& mesh = parts[p].model.mesh;
       post::BodyWriter& w = writer.add_body(post::layout::kAssemblyBodyPrefix + parts[p].body(), mesh);
       write_solid_field(w, mesh);
-      w.begin_series({{.name = post::layout::kPosition, .units = "m", .components = 3, .component_names = post::kVectorComponents,
-                       .geometry = true},
-                      {post::layout::kDisplacement, "m", 3, post::kVectorComponents},
-                      {post::layout::kDisplacementMagnitude, "m", 1, {}},
-                      {post::layout::kVonMises, "Pa", 1, {}}});
+      std::vector<post::SeriesField> series{
+          {.name = post::layout::kPosition, .units = "m", .components = 3, .component_names = post::kVectorComponents,
+           .geometry = true},
+          {post::layout::kDisplacement, "m", 3, post::kVectorComponents},
+          {post::layout::kDisplacementMagnitude, "m", 1, {}},
+          {post::layout::kVonMises, "Pa", 1, {}}};
+      if (has_pins_in_contact(parts[p])) series.push_back({post::layout::kContactPressure, "Pa", 1, {}});
+      w.begin_series(series);
       bodies.push_back(&w);
       const fem::Index N = mesh.node_count();
       envelopes[p] = {Eigen::VectorXd::Constant(N, -1.0), Eigen::VectorXd::Constant(N, -1.0),
-                      post::IndexMatrix::Zero(N, 1), post::IndexMatrix::Zero(N, 1)};
+                      Eigen::VectorXd::Constant(has_pins_in_contact(parts[p]) ? N : 0, -1.0),
+                      post::IndexMatrix::Zero(N, 1), post::IndexMatrix::Zero(N, 1),
+                      post::IndexMatrix::Zero(has_pins_in_contact(parts[p]) ? N : 0, 1)};
       part_body[p] = body_index(model, parts[p].body());
       summary.parts.push_back({parts[p].body(), 0.0, 0.0});
     }
@@ -117,6 +132,60 @@ struct AssemblyRecorder {
     record_points(pose, k, frame);
     record_chains_and_drives(pose, k, frame);
     record_pins(pose, k, frame);
+    record_contacts(pose, k, frame);
+  }
+
+  // The contact pressure of a part's pins at every node (0 off their bores).
+  post::FieldMatrix nodal_contact_pressure(const PoseSolution& pose, size_t p) const {
+    post::FieldMatrix out = post::FieldMatrix::Zero(parts[p].model.mesh.node_count(), 1);
+    for (const BoreContactResult& c : pose.contacts) {
+      if (c.body != parts[p].body()) continue;
+      const fem::BoreContactSurface& surface = assembly.contact_surface(c.body, c.joint);
+      const Eigen::VectorXd values = surface.nodal_pressure(c.pressure_pa);
+      for (size_t a = 0; a < surface.nodes().size(); ++a) out(surface.nodes()[a], 0) = values[Eigen::Index(a)];
+    }
+    return out;
+  }
+
+  // The pins in contact at output time k: their tables and peaks.
+  void record_contacts(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    if (k == 0)
+      for (const BoreContactResult& c : pose.contacts) {
+        AssemblySummary::ContactPeak peak;
+        peak.body = c.body;
+        peak.pin.joint = c.joint;
+        peak.pin.face_set = c.face_set;
+        peak.pin.clearance_m = c.clearance_m;
+        peak.pin.diameter_m = 2.0 * assembly.contact_surface(c.body, c.joint).radius_m();
+        for (const structure::Part& part : parts)
+          if (part.body() == c.body)
+            for (const auto& j : part.attachments.joints)
+              if (j.joint == c.joint) peak.pin.fit = j.fit;
+        peak.pin.min_arc_rad = std::numeric_limits<double>::infinity();
+        summary.contacts.push_back(std::move(peak));
+        contact_table.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 6));
+      }
+    for (size_t i = 0; i < pose.contacts.size() && i < summary.contacts.size(); ++i) {
+      const BoreContactResult& c = pose.contacts[i];
+      PinContactSummary& s = summary.contacts[i].pin;
+      if (c.state.peak_pressure_pa > s.peak_pressure_pa) {
+        s.peak_pressure_pa = c.state.peak_pressure_pa;
+        s.peak_time_s = frame.t;
+        s.peak_angle_rad = c.state.peak_angle_rad;
+        s.arc_at_peak_rad = c.state.arc_rad;
+      }
+      s.max_arc_rad = std::max(s.max_arc_rad, c.state.arc_rad);
+      s.min_arc_rad = std::min(s.min_arc_rad, c.state.arc_rad);
+      summary.contacts[i].max_pin_motion_m = std::max(summary.contacts[i].max_pin_motion_m, c.pin_motion.head<2>().norm());
+      contact_table[i].row(Eigen::Index(k)) << frame.t, c.state.peak_pressure_pa, c.state.peak_angle_rad / kDegree,
+          c.state.arc_rad / kDegree, c.pin_motion(0), c.pin_motion(1);
+    }
+    if (!pose.contacts.empty()) {
+      summary.worst_contact_penetration_m = std::max(summary.worst_contact_penetration_m, pose.contact.worst_penetration_m);
+      summary.worst_contact_resultant_error = std::max(summary.worst_contact_resultant_error, pose.contact.resultant_error);
+      summary.worst_contact_reciprocity = std::max(summary.worst_contact_reciprocity, pose.contact.reciprocity_error);
+    }
   }
 
   // The elastic pins' section stresses and deflection at output time k, and their peaks.
@@ -144,12 +213,25 @@ struct AssemblyRecorder {
     for (size_t p = 0; p < parts.size(); ++p) {
       const PartField& field = pose.part(parts[p].body());
       const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
-      if (options.field_steps.empty() || options.field_steps.at(k))
-        bodies[p]->write_step(frame.t, {{post::layout::kPosition, world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])])},
-                                        {post::layout::kDisplacement, field.displacement_m},
-                                        {post::layout::kDisplacementMagnitude, magnitude},
-                                        {post::layout::kVonMises, field.von_mises_pa}});
+      const bool contact = has_pins_in_contact(parts[p]);
+      const post::FieldMatrix pressure = contact ? nodal_contact_pressure(pose, p) : post::FieldMatrix();
+      if (options.field_steps.empty() || options.field_steps.at(k)) {
+        const post::FieldMatrix position = world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])]);
+        if (contact)
+          bodies[p]->write_step(frame.t, {{post::layout::kPosition, position},
+                                          {post::layout::kDisplacement, field.displacement_m},
+                                          {post::layout::kDisplacementMagnitude, magnitude},
+                                          {post::layout::kVonMises, field.von_mises_pa},
+                                          {post::layout::kContactPressure, pressure}});
+        else
+          bodies[p]->write_step(frame.t, {{post::layout::kPosition, position},
+                                          {post::layout::kDisplacement, field.displacement_m},
+                                          {post::layout::kDisplacementMagnitude, magnitude},
+                                          {post::layout::kVonMises, field.von_mises_pa}});
+      }
       BodyEnvelope& e = envelopes[p];
+      for (Eigen::Index i = 0; i < e.max_p.size(); ++i)
+        if (pressure(i, 0) > e.max_p(i)) e.max_p(i) = pressure(i, 0), e.step_p(i, 0) = fem::Index(k);
 #pragma omp parallel for schedule(static)
       for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
         if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
@@ -193,6 +275,13 @@ struct AssemblyRecorder {
       for (size_t c = 0; c < pr.contributions.size(); ++c)
         point_from[i][c].row(r) = pr.contributions[c].displacement_m.transpose();
       PointSummary& ps = summary.points[i];
+      point_coupling[i].row(r) = pr.coupling_displacement_m.transpose();
+      if (!pose.contacts.empty()) {
+        ps.has_pins_in_contact = true;
+        const Eigen::Vector3d share = pr.displacement_m - pr.coupling_displacement_m;
+        if (share.norm() > ps.max_pin_share_m || k == 0)
+          ps.max_pin_share_m = share.norm(), ps.max_pin_share_time_s = frame.t, ps.pin_share_at_max_m = share;
+      }
       if (pr.displacement_m.norm() > ps.max_displacement_m || k == 0) {
         ps.max_displacement_m = pr.displacement_m.norm();
         ps.max_displacement_time_s = frame.t;
@@ -246,6 +335,9 @@ struct AssemblyRecorder {
       bodies[p]->write_envelope(post::layout::kDisplacementMagnitude, "m", envelopes[p].max_u, envelopes[p].step_u, post::layout::kEnvelopeMax,
                                 step_times);
       bodies[p]->write_envelope(post::layout::kVonMises, "Pa", envelopes[p].max_vm, envelopes[p].step_vm, post::layout::kEnvelopeMax, step_times);
+      if (envelopes[p].max_p.size() > 0)
+        bodies[p]->write_envelope(post::layout::kContactPressure, "Pa", envelopes[p].max_p, envelopes[p].step_p,
+                                  post::layout::kEnvelopeMax, step_times);
     }
   }
 
@@ -263,6 +355,8 @@ struct AssemblyRecorder {
       w.write_static(post::layout::static_name(post::layout::kDisplacement), "m", field.displacement_m, post::kVectorComponents);
       w.write_static(post::layout::static_name(post::layout::kDisplacementMagnitude), "m", field.displacement_m.rowwise().norm());
       w.write_static(post::layout::static_name(post::layout::kVonMises), "Pa", field.von_mises_pa);
+      if (has_pins_in_contact(parts[p]))
+        w.write_static(post::layout::static_name(post::layout::kContactPressure), "Pa", nodal_contact_pressure(pose, p));
       summary.parts[p].static_von_mises_pa = field.von_mises_pa.maxCoeff();
     }
     for (size_t i = 0; i < P; ++i) {
@@ -289,7 +383,13 @@ struct AssemblyRecorder {
         for (size_t c = 0; c < point_from[i].size(); ++c)
           writer.write_history(base + ".from." + point_from_names[i][c], "m", point_from[i][c], post::kVectorComponents);
       }
+      if (summary.points[i].has_pins_in_contact)
+        writer.write_history(base + ".coupling_displacement", "m", point_coupling[i], post::kVectorComponents);
     }
+    for (size_t c = 0; c < summary.contacts.size(); ++c)
+      writer.write_table(fmt::format("assembly.contact.{}.{}", summary.contacts[c].body, summary.contacts[c].pin.joint),
+                         "s, Pa, deg, deg, m, m", contact_table[c],
+                         {"time", "peak_pressure", "peak_angle", "arc", "pin_x", "pin_y"});
     for (size_t c = 0; c < chain_names.size(); ++c) {
       writer.write_history("assembly.chain." + chain_names[c] + ".tension", "N", chain_tension[c]);
       writer.write_history("assembly.chain." + chain_names[c] + ".elongation", "m", chain_elongation[c]);
@@ -363,7 +463,7 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
   require(!stress_histories || options.keep_part_stress,
           "elastic assembly: the parts' stress histories need keep_part_stress in the assembly's options");
   AssemblySummary summary;
-  AssemblyRecorder recorder(parts, model, writer, options, motion.size(), summary);
+  AssemblyRecorder recorder(assembly, parts, model, writer, options, motion.size(), summary);
   if (stress_histories) {
     stress_histories->assign(parts.size(), PartStressHistory{.source = StressHistorySource::ElasticAssembly});
     recorder.stress_histories = stress_histories;
@@ -438,6 +538,14 @@ std::string format_assembly_summary(const AssemblySummary& s) {
                        p.joint, p.diameter_m / kMm, p.length_m / kMm, p.max_bending_stress_pa / units::kMpa,
                        p.max_bending_time_s, p.max_shear_stress_pa / units::kMpa, p.max_shear_time_s,
                        p.max_deflection_m / kMm);
+  for (const auto& c : s.contacts)
+    out += fmt::format("    pin {} in contact with bore '{}' of {} (d {:.2f} mm, radial clearance {:.1f} um{}): peak "
+                       "pressure {:.3f} MPa at t = {:.4f} s, {:.0f} deg from the part's x axis, arc {:.0f} deg there; "
+                       "the pin moves up to {:.1f} um in the bore\n",
+                       c.pin.joint, c.pin.face_set, c.body, c.pin.diameter_m / kMm, c.pin.clearance_m * 1e6,
+                       c.pin.fit.empty() ? std::string() : ", " + c.pin.fit, c.pin.peak_pressure_pa / units::kMpa,
+                       c.pin.peak_time_s, c.pin.peak_angle_rad * 180.0 / std::numbers::pi,
+                       c.pin.arc_at_peak_rad * 180.0 / std::numbers::pi, c.max_pin_motion_m * 1e6);
   for (const auto& p : s.points) {
     const Eigen::Vector3d& u = p.displacement_at_max_m;
     out += fmt::format("    point {} ({}): max |u| {:.4f} mm at t = {:.4f} s, u = ({:+.4f}, {:+.4f}, {:+.4f}) mm\n", p.name,
@@ -445,6 +553,11 @@ std::string format_assembly_summary(const AssemblySummary& s) {
                        u.z() / kMm);
     if (!p.contributions_at_max.empty())
       out += fmt::format("      split (unit-load method, along u): {}\n", split_text(u, p.contributions_at_max));
+    if (p.has_pins_in_contact)
+      out += fmt::format("      the pins' share (clearance and contact, against couplings at those pins): up to {:.4f} mm "
+                         "at t = {:.4f} s, ({:+.4f}, {:+.4f}, {:+.4f}) mm\n",
+                         p.max_pin_share_m / kMm, p.max_pin_share_time_s, p.pin_share_at_max_m.x() / kMm,
+                         p.pin_share_at_max_m.y() / kMm, p.pin_share_at_max_m.z() / kMm);
     if (p.max_compliance_m_per_n > 0)
       out += fmt::format(
           "      in-plane compliance: largest eigenvalue {:.4g} um/N (t = {:.4f} s), smallest {:.4g} um/N (t = {:.4f} s) "
@@ -459,6 +572,12 @@ std::string format_assembly_summary(const AssemblySummary& s) {
   }
   const AssemblyStatistics& st = s.statistics;
   const double per_pose = st.poses > 0 ? 1e3 / double(st.poses) : 0.0;
+  if (st.contact_corners > 0)
+    out += fmt::format("    contact: {} corners, condensation {:.2f} s, {:.2f} ms per pose ({} poses by the interior-point "
+                       "fallback, at most {} active-set steps); penetration <= {:.1e} m, resultant error <= {:.1e}\n",
+                       st.contact_corners, st.contact_setup_seconds, st.contact_seconds * per_pose,
+                       st.contact_interior_point_poses, st.most_contact_active_set_steps, s.worst_contact_penetration_m,
+                       s.worst_contact_resultant_error);
   out += fmt::format("    cost: setup {:.2f} s (factorizations {:.2f} s, interface and load-pattern solves), {:.2f} ms "
                      "per pose (loads {:.2f}, load fields {:.2f}, system {:.2f}, fields {:.2f})\n",
                      st.setup_seconds, st.factorize_seconds, 1e3 * st.pose_seconds(), st.loads_seconds * per_pose,

@@ -15,6 +15,7 @@
 //     displacement           m, N x 3  world axes, from the rigid configuration
 //     displacement_magnitude m, N x 1
 //     von_mises              Pa, N x 1
+//     contact_pressure       Pa, N x 1 a part with pins in contact: on their bores (0 elsewhere)
 //   cell field solid (a welded part: each element's solid, part_model.hpp);
 //   envelopes displacement_magnitude, von_mises (max over the motion);
 //   static study: static_position, static_displacement,
@@ -25,10 +26,16 @@
 //     assembly.point.<P>.displacement_magnitude         m
 //     assembly.point.<P>.rotation                       rad   x, y, z
 //     assembly.point.<P>.from.<contributor>             m     x, y, z; contributor part.<b>,
-//                                                             chain.<c>, drive.<d>; they add up
+//                                                             chain.<c>, drive.<d>, pin.<j>,
+//                                                             play.<j> (a pin in contact); they add up
+//     assembly.point.<P>.coupling_displacement          m     x, y, z: with couplings at the pins
+//                                                             in contact (pins in contact only)
 //     assembly.point.<P>.compliance                     m/N   xx xy xz yx yy yz zx zy zz
 //     assembly.chain.<c>.tension, .elongation           N, m
 //     assembly.drive.<d>.moment, .twist                 N*m, rad
+//   tables assembly.contact.<b>.<j> per pin in contact with a bore of part b:
+//     time (s), peak pressure (Pa), its angle from the part's x axis (deg), arc
+//     in contact (deg), the pin's motion in the bore (x, y, m; body axes)
 // The writer must have its mechanism time set (write_mechanism_histories) to
 // the output times of `motion`.
 #include <optional>
@@ -38,6 +45,7 @@
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/pipeline/part_stress.hpp"  // PinContactSummary
 #include "kinetofem/pipeline/part_stress_history.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
@@ -62,6 +70,11 @@ struct PointSummary {
   // The displacement at every output time (T x 3, world axes, m): the
   // quasi-static deflection the vibration stage adds its ringing to.
   Eigen::MatrixXd displacement_history_m;
+  // Pins in contact: the pins' share of the displacement (clearance and
+  // contact against couplings), |u - u_coupling|, its largest over the motion.
+  bool has_pins_in_contact = false;
+  double max_pin_share_m = 0.0, max_pin_share_time_s = 0.0;
+  Eigen::Vector3d pin_share_at_max_m = Eigen::Vector3d::Zero();
 };
 
 struct AssemblySummary {
@@ -88,6 +101,14 @@ struct AssemblySummary {
     double max_deflection_m = 0.0;
   };
   std::vector<PinPeak> pins;
+  // Per pin in contact with a bore of a part: its peaks over the motion.
+  struct ContactPeak {
+    std::string body;
+    PinContactSummary pin;
+    double max_pin_motion_m = 0.0;  // largest |(x, y)| of the pin's motion in the bore
+  };
+  std::vector<ContactPeak> contacts;
+  double worst_contact_penetration_m = 0.0, worst_contact_resultant_error = 0.0, worst_contact_reciprocity = 0.0;
   structure::Indeterminacy indeterminacy;  // of the first pose (the same at every regular pose)
   // |assembly chain tension - the dynamics'| / the dynamics', worst over the
   // poses (0 for determinate linkages up to round-off).
