@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/solver/bore_contact_pin.hpp"
 
 namespace kinetofem::loads {
 
@@ -60,29 +61,19 @@ LinkContactHistory solve_contact_over_motion(fem::LinearStaticAnalysis& analysis
     m += b.surface.size();
   }
 
-  // The condensed operators, m solves in blocks: A = F^T K^-1 F, D = F^T K^-1 P.
+  // The condensed operators, m solves in blocks: A = F^T K^-1 F, D = F^T K^-1 P;
+  // an elastic pin adds its own compliance on its bore's block of A.
   const Eigen::MatrixXd P = loads.pattern_forces();
-  const Eigen::Index dofs = 3 * mesh.node_count();
-  Eigen::MatrixXd A(m, m), D(m, P.cols());
-  const Eigen::Index block = 64;
-  for (Eigen::Index first = 0; first < m; first += block) {
-    const Eigen::Index count = std::min(block, m - first);
-    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(dofs, count);
-    for (size_t b = 0; b < h.bores.size(); ++b) {
-      const auto& s = h.bores[b].surface;
-      Eigen::MatrixXd unit_pressure = Eigen::MatrixXd::Zero(s.size(), count);
-      for (Eigen::Index i = 0; i < s.size(); ++i)
-        if (offset[b] + i >= first && offset[b] + i < first + count) unit_pressure(i, offset[b] + i - first) = 1.0;
-      if (!unit_pressure.isZero(0.0)) s.add_forces(unit_pressure, unit);
-    }
-    const std::vector<fem::DisplacementField> u = analysis.solve_forces(unit);
-    Eigen::MatrixXd W(dofs, count);
-    for (Eigen::Index k = 0; k < count; ++k) W.col(k) = Eigen::Map<const Eigen::VectorXd>(u[size_t(k)].data(), dofs);
-    for (size_t b = 0; b < h.bores.size(); ++b)
-      A.block(offset[b], first, h.bores[b].surface.size(), count) = h.bores[b].surface.weighted_normal_components(W);
-    D.middleRows(first, count).noalias() = W.transpose() * P;
+  std::vector<const fem::BoreContactSurface*> surfaces;
+  for (const auto& b : h.bores) surfaces.push_back(&b.surface);
+  fem::CondensedContact condensed = fem::condense_contact(analysis, surfaces, P);
+  Eigen::MatrixXd& A = condensed.compliance;
+  const Eigen::MatrixXd& D = condensed.pattern_gaps;
+  for (size_t b = 0; b < h.bores.size(); ++b) {
+    if (!contact[b].pin_material) continue;
+    const fem::ElasticPin pin(mesh, h.bores[b].surface, *contact[b].pin_material, h.bores[b].clearance_m, log);
+    A.block(offset[b], offset[b], pin.compliance().rows(), pin.compliance().cols()) += pin.compliance();
   }
-  A = 0.5 * (A + A.transpose());  // symmetric to round-off; exactly, for the Cholesky factors
   h.condensed_bytes = 8.0 * double(A.size() + D.size());
   h.set_up_seconds = clock.seconds();
   log.detail("  link '{}': contact of {} pin(s) on {} bore corner nodes: condensed operators in {:.2f} s ({:.1f} MB)",

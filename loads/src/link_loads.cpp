@@ -118,7 +118,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
         }
       }
       contact_bores_.push_back({joint.name, {attachment.face_set, centre, Eigen::Vector3d::UnitZ()},
-                                12 + 6 * a.coupling, clearance, 2 * radius});
+                                12 + 6 * a.coupling, clearance, 2 * radius, attachment.pin_material});
     }
     a.revolute = mech::joint_facts(joint.type).out_of_plane_pin;
     joints_.push_back(std::move(a));

@@ -15,6 +15,7 @@
 #include "kinetofem/solver/element_library.hpp"
 #include "kinetofem/solver/element_traits.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/solver/static_analysis.hpp"
 
 namespace kinetofem::fem {
 
@@ -360,6 +361,39 @@ Eigen::MatrixXd BoreContactSurface::weighted_normal_components(
     for (Index a = 0; a < Index(nodes_.size()); ++a)
       normal(a, c) = normals_.row(a).dot(displacements.col(c).segment<3>(3 * nodes_[size_t(a)]));
   return force_map_.transpose() * normal;
+}
+
+CondensedContact condense_contact(LinearStaticAnalysis& analysis, const std::vector<const BoreContactSurface*>& surfaces,
+                                  const Eigen::MatrixXd& P) {
+  const Index dofs = 3 * analysis.model().mesh.node_count();
+  require(P.rows() == dofs, "contact: {} pattern force rows for {} DoFs", P.rows(), dofs);
+  Index m = 0;
+  std::vector<Index> offset;
+  for (const BoreContactSurface* s : surfaces) {
+    offset.push_back(m);
+    m += s->size();
+  }
+  Eigen::MatrixXd A(m, m), D(m, P.cols());
+  const Index block = 64;
+  for (Index first = 0; first < m; first += block) {
+    const Index count = std::min(block, m - first);
+    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(dofs, count);
+    for (size_t b = 0; b < surfaces.size(); ++b) {
+      const auto& s = *surfaces[b];
+      Eigen::MatrixXd unit_pressure = Eigen::MatrixXd::Zero(s.size(), count);
+      for (Index i = 0; i < s.size(); ++i)
+        if (offset[b] + i >= first && offset[b] + i < first + count) unit_pressure(i, offset[b] + i - first) = 1.0;
+      if (!unit_pressure.isZero(0.0)) s.add_forces(unit_pressure, unit);
+    }
+    const std::vector<DisplacementField> u = analysis.solve_forces(unit);
+    Eigen::MatrixXd W(dofs, count);
+    for (Index k = 0; k < count; ++k) W.col(k) = Eigen::Map<const Eigen::VectorXd>(u[size_t(k)].data(), dofs);
+    for (size_t b = 0; b < surfaces.size(); ++b)
+      A.block(offset[b], first, surfaces[b]->size(), count) = surfaces[b]->weighted_normal_components(W);
+    D.middleRows(first, count).noalias() = W.transpose() * P;
+  }
+  A = 0.5 * (A + A.transpose());  // symmetric to round-off; exactly, for the Cholesky factors
+  return {std::move(A), std::move(D)};
 }
 
 BoreContactState contact_state(const BoreContactSurface& bore, const Eigen::Ref<const Eigen::VectorXd>& pressure_pa) {

@@ -52,6 +52,7 @@
 // Error naming the link and the time when the resultant force or moment
 // exceeds `equilibrium_tolerance` of the loads' magnitude.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,10 @@ struct JointAttachment {
   // Contact: an ISO 286 clearance fit ("H7/g6", loads/iso_fit.hpp) instead:
   // its mean radial clearance at the bore's diameter (measured on the mesh).
   std::string fit;
+  // Contact: the pin's material when the pin is elastic (fem::ElasticPin: a
+  // pin meshed from the bore's diameter less the clearance and its span);
+  // none: a rigid pin.
+  std::optional<fem::IsotropicMaterial> pin_material;
 };
 
 // A pin in contact with a bore of the link (BoreLoad::Contact): the joint,
@@ -92,6 +97,7 @@ struct ContactBore {
   int first_pattern = -1;
   double clearance_m = 0.0;  // radial (from JointAttachment::clearance_m or its fit)
   double diameter_m = 0.0;   // of the bore: twice the mean distance of its nodes from the axis
+  std::optional<fem::IsotropicMaterial> pin_material;  // elastic pin (JointAttachment::pin_material); none: rigid
 };
 
 // A point mass of the multibody body carried through a mount face.

@@ -44,6 +44,8 @@
 
 namespace kinetofem::fem {
 
+class LinearStaticAnalysis;
+
 struct ContactSolverOptions {
   // Complementarity, gap and resultant tolerance relative to the problem's
   // scales: a force (the resultant's, or what closes the gaps the other
@@ -148,6 +150,21 @@ class BoreContactSurface {
   Eigen::Vector3d centre_, axis_, e1_, e2_;
   double radius_ = 0.0, length_ = 0.0;
 };
+
+// The condensed operators of contact surfaces on one part's factorization,
+// by m solves in blocks of 64 (m: the corners of all the surfaces, stacked
+// in order): the compliance A = F^T K^-1 F (m x m, m^3/Pa, symmetrized) and
+// the weighted gaps of the part's load patterns D = F^T K^-1 P (m x the
+// columns of `pattern_forces`, 3 N x k, N; m^3 per unit coefficient), with
+// F the surfaces' nodal forces of unit corner pressures. The surfaces'
+// nodes must be free in the factorized model (the caller checks).
+struct CondensedContact {
+  Eigen::MatrixXd compliance;
+  Eigen::MatrixXd pattern_gaps;
+};
+CondensedContact condense_contact(LinearStaticAnalysis& factorized,
+                                  const std::vector<const BoreContactSurface*>& surfaces,
+                                  const Eigen::MatrixXd& pattern_forces);
 
 // What one bore's contact pressure means to a user.
 struct BoreContactState {
