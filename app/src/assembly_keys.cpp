@@ -70,6 +70,10 @@ std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFi
           "{} = \"rigid_bore\": pins in contact need the distributing couplings (rigid_bore presses every pin into "
           "its bore); loads.bore_load = \"contact\" is set",
           c.where("assembly.coupling"));
+  require(!c.has("loads.pin_youngs_modulus_mpa"),
+          "{}: elastic pins in contact are modelled in the per-part analysis only (the elastic assembly's pins in "
+          "contact are rigid in their bores): leave the pins rigid, or set assembly.enabled = false",
+          c.where("loads.pin_youngs_modulus_mpa"));
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
   if (with_chain) {
@@ -193,6 +197,11 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
             "{} = \"rigid_bore\": pins in contact need the distributing couplings (rigid_bore presses every pin "
             "into its bore); joint '{}' has load = \"contact\"",
             c.where("assembly.coupling"), c.text_value("joint[].name", k));
+  for (std::size_t k = 0; k < c.count("joint"); ++k)
+    require(!c.has("joint[].pin_youngs_modulus_mpa", k),
+            "{}: joint '{}': elastic pins in contact are modelled in the per-part analysis only (the elastic "
+            "assembly's pins in contact are rigid in their bores): leave the pin rigid, or set assembly.enabled = false",
+            c.where("joint[].pin_youngs_modulus_mpa", k), c.text_value("joint[].name", k));
   structure::AssemblyOptions o;
   o.coupling = read_coupling(c);
   for (std::size_t k = 0; k < c.count("joint"); ++k) {

@@ -65,6 +65,11 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "loads.fit", .type = Type::String,
        .doc = "bore_load = 'contact': an ISO 286 clearance fit such as \"H7/g6\" instead of clearance_mm (its mean radial "
               "clearance at the bore's diameter)"},
+      {.path = "loads.pin_youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = kMpa, .min = 1e-3, .max = 1e7,
+       .doc = "bore_load = 'contact': elastic pins of this modulus (meshed from the bore's diameter less the clearance "
+              "and its span; docs/contact.md); absent: rigid pins"},
+      {.path = "loads.pin_poisson_ratio", .type = Type::Number, .default_number = 0.3, .min = -0.999, .max = 0.499,
+       .doc = "the elastic pins' Poisson ratio (with pin_youngs_modulus_mpa)"},
       {.path = "static_study.enabled", .type = Type::Boolean, .default_number = 1, .doc = "also solve the static pose study (gravity and payload, at rest)"},
       {.path = "static_study.dphi_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0, .min = -180, .max = 180,
        .doc = "lever angle of the static pose from the design position"},
@@ -118,6 +123,18 @@ pipeline::ManipulatorLinks read_links(const CaseFile& c) {
   require(links.bore_load == loads::BoreLoad::Contact || (!clearance && !fit),
           "{}: a pin clearance or fit needs loads.bore_load = \"contact\"", c.where(clearance ? "loads.clearance_mm" : "loads.fit"));
   require(!(clearance && fit), "{}: give loads.clearance_mm or loads.fit, not both", c.where("loads.fit"));
+  const bool elastic = c.has("loads.pin_youngs_modulus_mpa");
+  require(links.bore_load == loads::BoreLoad::Contact || !elastic,
+          "{}: an elastic pin needs loads.bore_load = \"contact\"", c.where("loads.pin_youngs_modulus_mpa"));
+  require(elastic || !c.has("loads.pin_poisson_ratio"), "{}: a pin's Poisson ratio needs loads.pin_youngs_modulus_mpa",
+          c.where("loads.pin_poisson_ratio"));
+  if (elastic) {
+    fem::IsotropicMaterial pin;
+    pin.name = "pin";
+    pin.youngs_modulus_pa = c.number("loads.pin_youngs_modulus_mpa");
+    pin.poisson_ratio = c.number("loads.pin_poisson_ratio");
+    links.pin_fit.pin_material = pin;
+  }
   if (clearance) links.pin_fit.clearance_m = c.number("loads.clearance_mm");
   if (fit) {
     links.pin_fit.fit = c.text_value("loads.fit");

@@ -14,6 +14,7 @@ namespace kinetofem::app {
 
 using units::kDeg;
 using units::kMm;
+using units::kMpa;
 using Type = KeySpec::Type;
 
 namespace {
@@ -146,6 +147,11 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "joint[].fit", .type = Type::String,
                .doc = "load = \"contact\": an ISO 286 clearance fit such as \"H7/g6\" instead of clearance_mm: its mean "
                       "radial clearance at each bore's diameter"});
+  s.push_back({.path = "joint[].pin_youngs_modulus_mpa", .type = Type::Number, .unit = "MPa", .to_si = kMpa, .min = 1e-3,
+               .max = 1e7, .doc = "load = \"contact\": an elastic pin of this modulus (meshed from each bore's diameter "
+                                  "less the clearance and its span; docs/contact.md); absent: a rigid pin"});
+  s.push_back({.path = "joint[].pin_poisson_ratio", .type = Type::Number, .default_number = 0.3, .min = -0.999, .max = 0.499,
+               .doc = "the elastic pin's Poisson ratio (with pin_youngs_modulus_mpa)"});
   for (const char* table : {"motion_drive", "force_drive"}) {
     s.push_back({.path = std::string(table) + "[].face_i", .type = Type::String, .doc = "face set of body_i's part the drive's reaction torque enters through"});
     s.push_back({.path = std::string(table) + "[].face_j", .type = Type::String, .doc = "face set of body_j's part the drive's torque enters through (the shaft bore)"});
@@ -162,15 +168,26 @@ namespace {
 // joint's type and the other loads.
 loads::ContactFit read_pin_fit(const CaseFile& c, std::size_t k, const mech::Joint& j, loads::BoreLoad load) {
   const bool clearance = c.has("joint[].clearance_mm", k), fit = c.has("joint[].fit", k);
+  const bool elastic = c.has("joint[].pin_youngs_modulus_mpa", k);
+  require(elastic || !c.has("joint[].pin_poisson_ratio", k), "{}: joint '{}': a pin's Poisson ratio needs its "
+          "pin_youngs_modulus_mpa", c.where("joint[].pin_poisson_ratio", k), j.name);
   if (load != loads::BoreLoad::Contact) {
-    require(!clearance && !fit, "{}: joint '{}': a clearance or fit needs load = \"contact\"",
-            c.where(clearance ? "joint[].clearance_mm" : "joint[].fit", k), j.name);
+    require(!clearance && !fit && !elastic, "{}: joint '{}': a clearance, fit or elastic pin needs load = \"contact\"",
+            c.where(clearance ? "joint[].clearance_mm" : fit ? "joint[].fit" : "joint[].pin_youngs_modulus_mpa", k),
+            j.name);
     return {};
   }
   require(mech::joint_facts(j.type).bearing_pressure, "{} = \"contact\": joint '{}' is {}; contact needs a revolute (pin) joint",
           c.where("joint[].load", k), j.name, c.text_value("joint[].type", k));
   require(!(clearance && fit), "{}: joint '{}': give clearance_mm or fit, not both", c.where("joint[].fit", k), j.name);
   loads::ContactFit out;
+  if (c.has("joint[].pin_youngs_modulus_mpa", k)) {
+    fem::IsotropicMaterial pin;
+    pin.name = "pin of joint '" + j.name + "'";
+    pin.youngs_modulus_pa = c.number("joint[].pin_youngs_modulus_mpa", k);
+    pin.poisson_ratio = c.number("joint[].pin_poisson_ratio", k);
+    out.pin_material = pin;
+  }
   if (clearance) out.clearance_m = c.number("joint[].clearance_mm", k);
   if (fit) {
     out.fit = c.text_value("joint[].fit", k);
@@ -333,8 +350,10 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
     const std::string fi = face("joint[].face_i", k, j.body_i, what), fj = face("joint[].face_j", k, j.body_j, what);
     const loads::BoreLoad used = mech::joint_facts(j.type).always_distributing ? loads::BoreLoad::DistributingCoupling : load;
     const loads::ContactFit pin = read_pin_fit(c, k, j, load);
-    if (!fi.empty()) part_for(j.body_i)->attachments.joints.push_back({j.name, fi, used, pin.clearance_m, pin.fit});
-    if (!fj.empty()) part_for(j.body_j)->attachments.joints.push_back({j.name, fj, used, pin.clearance_m, pin.fit});
+    if (!fi.empty())
+      part_for(j.body_i)->attachments.joints.push_back({j.name, fi, used, pin.clearance_m, pin.fit, pin.pin_material});
+    if (!fj.empty())
+      part_for(j.body_j)->attachments.joints.push_back({j.name, fj, used, pin.clearance_m, pin.fit, pin.pin_material});
   }
   auto drives = [&](const char* table, const auto& list) {
     for (std::size_t k = 0; k < c.count(table); ++k) {

@@ -11,6 +11,7 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
   const loads::BoreLoad pin = links.bore_load;
   const double clearance = links.pin_fit.clearance_m;
   const std::string fit = links.pin_fit.fit;
+  const std::optional<fem::IsotropicMaterial> pin_material = links.pin_fit.pin_material;
   using namespace mech::manipulator;  // the preset's body, joint and face-set names
 
   PartSpec lever;
@@ -18,7 +19,7 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
   lever.lever = links.lever;
   lever.lever.length_m = g.a_m;
   lever.label = "part 'lever' (lever 1)";
-  lever.attachments = {kLever, nullptr, {{kJointA0, kBoreA0, pin, clearance, fit}, {kJointA, kBoreA, pin, clearance, fit}}, {}, {{kLeverDrive, kBoreA0}}};
+  lever.attachments = {kLever, nullptr, {{kJointA0, kBoreA0, pin, clearance, fit, pin_material}, {kJointA, kBoreA, pin, clearance, fit, pin_material}}, {}, {{kLeverDrive, kBoreA0}}};
 
   PartSpec arm;
   arm.source = chain ? PartSource::ArmWithRoller : PartSource::Coupler;
@@ -30,9 +31,9 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
   arm.arm.boss_length_m = links.lever.boss_length_m;
   arm.label = chain ? "part 'arm' (link 2 with roller)" : "part 'arm' (coupler, link 2)";
   arm.attachments.body = kArm;
-  arm.attachments.joints.push_back({kJointA, kBoreA, pin, clearance, fit});
+  arm.attachments.joints.push_back({kJointA, kBoreA, pin, clearance, fit, pin_material});
   if (chain) arm.attachments.joints.push_back({kChain, kRollerRim, loads::BoreLoad::DistributingCoupling});
-  else arm.attachments.joints.push_back({kJointB, kBoreB, pin, clearance, fit});
+  else arm.attachments.joints.push_back({kJointB, kBoreB, pin, clearance, fit, pin_material});
   if (def.gripper_mass_kg > 0) arm.attachments.point_masses.push_back({kGripperMass, kGripperMount});
   if (def.casting_mass_kg > 0) arm.attachments.point_masses.push_back({kCastingMass, kGripperMount});
 
@@ -43,7 +44,7 @@ std::vector<PartSpec> manipulator_parts(const mech::ManipulatorDefinition& def, 
     rocker.lever = links.lever;
     rocker.lever.length_m = g.b0_m;
     rocker.label = "part 'rocker' (rocker 3)";
-    rocker.attachments = {kRocker, nullptr, {{kJointB0, kBoreA0, pin, clearance, fit}, {kJointB, kBoreA, pin, clearance, fit}}, {}, {}};
+    rocker.attachments = {kRocker, nullptr, {{kJointB0, kBoreA0, pin, clearance, fit, pin_material}, {kJointB, kBoreA, pin, clearance, fit, pin_material}}, {}, {}};
     parts.push_back(rocker);
   }
   for (const auto& p : parts) {

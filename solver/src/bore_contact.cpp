@@ -392,7 +392,7 @@ CondensedContact condense_contact(LinearStaticAnalysis& analysis, const std::vec
       A.block(offset[b], first, surfaces[b]->size(), count) = surfaces[b]->weighted_normal_components(W);
     D.middleRows(first, count).noalias() = W.transpose() * P;
   }
-  A = 0.5 * (A + A.transpose());  // symmetric to round-off; exactly, for the Cholesky factors
+  A = 0.5 * (A + A.transpose()).eval();  // exactly symmetric (evaluated first: A is aliased)
   return {std::move(A), std::move(D)};
 }
 

@@ -926,6 +926,10 @@ void ElasticAssembly::Impl::find_contact_bores() {
       require(std::isfinite(attachment->clearance_m) && attachment->clearance_m >= 0,
               "{}: joint '{}': the pin's clearance {} m is negative (an interference fit is not supported)", part.label,
               iface.name, attachment->clearance_m);
+      require(!attachment->pin_material,
+              "{}: joint '{}': an elastic pin in contact is modelled in the per-part analysis only; the elastic "
+              "assembly's pins in contact are rigid in their bores",
+              part.label, iface.name);
       ContactBore bore;
       bore.iface = k;
       bore.part = int(p);

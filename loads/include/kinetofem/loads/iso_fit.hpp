@@ -9,7 +9,10 @@
 // deviation the fundamental deviation, lower that less the grade): the
 // clearance fits. Interference and transition fits (shafts j .. zc) are not
 // supported (the contact model has no interference).
+#include <optional>
 #include <string>
+
+#include "kinetofem/solver/material.hpp"
 
 namespace kinetofem::loads {
 
@@ -19,11 +22,13 @@ struct FitClearance {
   double mean_radial_m() const { return 0.25 * (min_m + max_m); }
 };
 
-// A pin's clearance as a case gives it: radial clearance, or a fit (not
-// empty) resolved at the bore's diameter.
+// A pin in contact as a case gives it: radial clearance, or a fit (not
+// empty) resolved at the bore's diameter; its material when it is elastic
+// (none: a rigid pin).
 struct ContactFit {
   double clearance_m = 0.0;
   std::string fit;
+  std::optional<fem::IsotropicMaterial> pin_material;
 };
 
 // Throws Error naming `fit` when it is not "H<grade>/<letter><grade>" of the
