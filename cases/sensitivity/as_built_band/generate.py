@@ -50,6 +50,14 @@ def column_modulus(e_mpa):
 def chain_ea(ea):
     return [(r'ea_per_strand_n = 5\.0e6', f'ea_per_strand_n = {ea:.3g}')]
 
+def pins_in_contact(clearance, revolute_joints):
+    # Every revolute pin in frictionless contact with its bores (docs/contact.md): line-to-line
+    # (0), an ISO 286 fit, or a radial clearance in mm.
+    key = f'fit = "{clearance}"' if isinstance(clearance, str) else f'clearance_mm = {clearance}'
+    return [(r'(type = "revolute"\n)', rf'\g<1>load = "contact"\n{key}\n', revolute_joints)]
+
+CONTACT = {"pins_contact_line": 0.0, "pins_contact_H7g6": "H7/g6", "pins_contact_50um": 0.05}
+
 ONE_AT_A_TIME = {
     "pin_A_20": pin_a(20.0),
     "pin_A_25": pin_a(25.0),
@@ -66,6 +74,7 @@ ONE_AT_A_TIME = {
     "column_E_x2": column_modulus(420000.0),
     "chain_EA_x0.25": chain_ea(1.25e6),
     "chain_EA_x4": chain_ea(2.0e7),
+    **{name: pins_in_contact(c, 2) for name, c in CONTACT.items()},
 }
 # The four-bar: the unknowns it shares with the lever-chain (no chain; the plane offsets would
 # need frame variants and are not run).
@@ -87,6 +96,7 @@ FOUR_BAR = {
     "casting_15kg": casting(15.0),
     "column_E_x0.5": column_modulus(105000.0),
     "column_E_x2": column_modulus(420000.0),
+    **{name: pins_in_contact(c, 4) for name, c in CONTACT.items()},
     "all_soft": pin("A", 30.0, 20.0) + pin("B", 25.0, 20.0) + pin("B0", 25.0, 20.0) + pin("A0", 40.0, 30.0)
                 + part_file("lever", "fourbar_plate12") + part_file("rocker", "fourbar_rocker8") + casting(15.0)
                 + column_modulus(105000.0),
