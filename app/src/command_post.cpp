@@ -477,6 +477,13 @@ int run_post(const PostOptions& o) {
       written.push_back(fmt::format("{}  ({} pins; peak {:.3f} MPa on {} at {})", p.string(), info.pins.size(),
                                     info.peak_pressure_pa * 1e-6, info.peak_pin, when(info.peak_time_s)));
     }
+    if (!post::contact_tables(r, post::ContactTables::Assembly).empty()) {
+      const fs::path p = png_dir / "assembly_pin_contact.png";
+      const post::ContactPictureInfo info = post::write_contact_picture(r, p, po, post::ContactTables::Assembly);
+      written.push_back(fmt::format("{}  ({} pins in the elastic assembly; peak {:.3f} MPa on {} at {})", p.string(),
+                                    info.pins.size(), info.peak_pressure_pa * 1e-6, info.peak_pin,
+                                    when(info.peak_time_s)));
+    }
     for (const auto& name : r.histories())
       if (name.rfind("gripper_point_", 0) == 0 || name.rfind("point.", 0) == 0) {
         const std::string point = name.rfind("point.", 0) == 0 ? name.substr(6) : name.substr(14);

@@ -1,5 +1,6 @@
 // The pin contact picture (png_plots.hpp): each pin's peak contact pressure and contact arc over
-// the motion, from the tables contact.<body>.<joint> (pipeline/part_stress.hpp).
+// the motion, from the tables contact.<body>.<joint> (pipeline/part_stress.hpp) or
+// assembly.contact.<body>.<joint> (pipeline/assembly_over_motion.hpp).
 #include "kinetofem/postproc/png_plots.hpp"
 
 #include <algorithm>
@@ -18,27 +19,36 @@ namespace kinetofem::post {
 using namespace drawing;
 
 namespace {
-constexpr const char* kContactTablePrefix = "contact.";
+std::string prefix_of(ContactTables stage) {
+  switch (stage) {
+    case ContactTables::PerPart:
+      return "contact.";
+    case ContactTables::Assembly:
+      return "assembly.contact.";
+  }
+  return "";
 }
+}  // namespace
 
-std::vector<std::string> contact_tables(const ResultsFile& results) {
+std::vector<std::string> contact_tables(const ResultsFile& results, ContactTables stage) {
   std::vector<std::string> out;
   for (const auto& name : results.tables())
-    if (name.rfind(kContactTablePrefix, 0) == 0) out.push_back(name);
+    if (name.rfind(prefix_of(stage), 0) == 0) out.push_back(name);
   return out;
 }
 
 ContactPictureInfo write_contact_picture(const ResultsFile& results, const std::filesystem::path& png,
-                                         const PictureOptions& options) {
-  const std::vector<std::string> names = contact_tables(results);
-  require(!names.empty(), "'{}' has no pin contact tables (contact.<body>.<joint>: a run with load = \"contact\")",
-          results.path().string());
+                                         const PictureOptions& options, ContactTables stage) {
+  const std::string kContactTablePrefix = prefix_of(stage);
+  const std::vector<std::string> names = contact_tables(results, stage);
+  require(!names.empty(), "'{}' has no pin contact tables ({}<body>.<joint>: a run with load = \"contact\")",
+          results.path().string(), kContactTablePrefix);
   ContactPictureInfo info;
   std::vector<Curve> pressure, arc;
   double t0 = 0.0, t1 = 0.0;
   for (const auto& name : names) {
     const FieldData table = results.read_table(name);
-    require(table.values.cols() == 4 && table.values.rows() >= 1,
+    require(table.values.cols() >= 4 && table.values.rows() >= 1,
             "'{}': table {} is {} x {}, expected (time, peak pressure, angle, arc) per output time",
             results.path().string(), name, table.values.rows(), table.values.cols());
     std::vector<double> t(size_t(table.values.rows())), p(t.size()), a(t.size());
@@ -63,8 +73,10 @@ ContactPictureInfo write_contact_picture(const ResultsFile& results, const std::
   }
   Canvas canvas(options.width_px, options.height_px);
   cairo_t* cr = canvas.cr();
-  title(cr, canvas, fmt::format("{}: pins in contact with their bores over the motion", case_name(results, options)),
-        fmt::format("peak contact pressure {:.3f} MPa ({}, t = {:.3f} s); {:.2f} .. {:.2f} s; rigid round pins, "
+  title(cr, canvas,
+        fmt::format("{}: pins in contact with their bores over the motion{}", case_name(results, options),
+                    stage == ContactTables::Assembly ? " (the elastic assembly)" : ""),
+        fmt::format("peak contact pressure {:.3f} MPa ({}, t = {:.3f} s); {:.2f} .. {:.2f} s; round pins, "
                     "frictionless (docs/contact.md)",
                     info.peak_pressure_pa * 1e-6, info.peak_pin, info.peak_time_s, t0, t1));
   const double left = 100, legend_w = 250, top = 100, bottom = 70, gap = 90;

@@ -193,11 +193,15 @@ struct ContactPictureInfo {
   std::vector<std::string> pins;  // every pin drawn, "<body>.<joint>"
 };
 
-// The result file's pin contact tables (contact.<body>.<joint>), in file order; empty when none.
-std::vector<std::string> contact_tables(const ResultsFile& results);
+// Where the pin contact tables come from: the per-part stage (contact.<body>.<joint>) or the
+// elastic assembly (assembly.contact.<body>.<joint>).
+enum class ContactTables { PerPart, Assembly };
+// The result file's pin contact tables of that stage, in file order; empty when none.
+std::vector<std::string> contact_tables(const ResultsFile& results, ContactTables stage = ContactTables::PerPart);
 // Each pin's peak contact pressure and arc over the motion. Throws Error naming the file if it
-// has no contact tables (or a misshapen one).
+// has no contact tables of that stage (or a misshapen one).
 ContactPictureInfo write_contact_picture(const ResultsFile& results, const std::filesystem::path& png,
-                                         const PictureOptions& options = {});
+                                         const PictureOptions& options = {},
+                                         ContactTables stage = ContactTables::PerPart);
 
 }  // namespace kinetofem::post
