@@ -1,7 +1,8 @@
 // A rigid round pin in frictionless contact with the bore of a lug, one
 // pose, against CalculiX (ccx, where it is installed; skipped otherwise:
 // `apt-get install calculix-ccx`). The lug is testing::mirrored_lug_mesh
-// (HEX20, 4 608 nodes, its end face clamped), the same mesh in both codes.
+// (HEX20, 4 layers through the thickness, 6 radially: 6 144 nodes; its end
+// face clamped), the same mesh in both codes.
 //
 // The CalculiX model: the lug's deck (fem::write_calculix_deck: C3D20, the
 // same nodes, elements, material and clamp) with a pin added, a tube whose
@@ -24,26 +25,44 @@
 // load are symmetric about the mid-plane z = t/2, so kinetofem's free pin
 // does not tilt either (its tilt is printed).
 // Line-to-line (no clearance): the pin's surface and the bore's are then one
-// surface, so ccx's contact search starts from zero gaps everywhere and the
-// contact arc covers about half the bore, resolved by about 24 corner
-// spacings; a clearance of some um would close over a few corners only,
-// where the two codes' different pressure discretizations (below) differ the
-// most.
+// surface, so ccx's contact search starts from zero gaps everywhere, and the
+// contact arc covers about half the bore (about 25 corner spacings): an arc
+// with an interior, away from its two ends, where each code's pressure is
+// resolved by many cells. (With a clearance of 20 um the arc spans 4 corner
+// spacings, every cell of it next to an end; docs/contact.md.)
 //
 // What is compared (reference: CalculiX 2.20 on the same mesh; tolerance 5 %
-// each, as the check asks):
-//   - the peak contact pressure: kinetofem's largest corner pressure p_c
-//     (the pressure is linear between the faces' corners, a mortar
-//     discretization) and ccx's largest CPRESS (penalty pressure K times the
-//     overclosure at the slave faces' integration points, extrapolated to
-//     and averaged at the slave nodes, *CONTACT FILE);
+// each, as the check asks), on quantities that both codes have converged:
+//   - the contact pressure along the arc away from its ends, on the bore's
+//     mid-thickness row of corner nodes (z = t/2; the lug and the load are
+//     symmetric about it, and it is farthest from the faces' corners): at
+//     each corner whose angle from the force is within 60 % of the half-arc,
+//     kinetofem's corner pressure p_c (the pressure is linear between the
+//     faces' corners, a mortar discretization) against ccx's CPRESS at that
+//     node (penalty K times the overclosure at the slave faces' integration
+//     points, extrapolated to and averaged at the slave nodes, *CONTACT
+//     FILE), within 5 % of the larger of the two there (relative to the
+//     local value, not to the row's peak: the pressures compared are all of
+//     one size, 8 to 10 MPa, so a local measure is the stricter one);
+//   - the contact arc on that row: its two ends (the last corners with a
+//     positive pressure, each code's own) within one corner spacing;
 //   - the lug's peak von Mises stress at the integration points (both codes
 //     use the same 27 points of a HEX20 / C3D20: free of the two codes'
 //     different extrapolations to the nodes), and at the nodes (kinetofem a
 //     trilinear least-squares fit per element, ccx its own extrapolation,
 //     both averaged over the elements at a node).
+// What is not compared: the peak contact pressure. Both codes put it in the
+// cells at the ends of the arc, where the pressure drops to zero within one
+// cell, and there ccx's value is not a converged quantity: it follows the
+// penalty (10.6, 22.3 and 57.5 MPa at 2e15, 2e16 and 2e17 Pa/m on this
+// mesh, while the compared pressures move by 0.6 % at most from 2e15 to
+// 2e16 and the von Mises peaks by 0.2 %; measured and kept in
+// docs/contact.md, the sweep's two more ccx runs, 30 s and 150 s, being too
+// slow for this test). The test prints both peaks, unchecked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -51,6 +70,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "kinetofem/solver/calculix_export.hpp"
 #include "kinetofem/solver/element_materials.hpp"
@@ -125,6 +145,7 @@ struct CcxResults {
   Eigen::Vector3d pin_reaction_n = Eigen::Vector3d::Constant(std::nan(""));
   double peak_gauss_von_mises_pa = 0.0;  // over the lug's elements
   double peak_pressure_pa = 0.0;         // CPRESS at the slave nodes
+  std::map<long long, double> pressure_pa;  // CPRESS per slave node (1-based id; the lug's ids are its indices + 1)
   Eigen::VectorXd nodal_von_mises_pa;    // the lug's nodes
   int contact_nodes = 0;                 // slave nodes with CPRESS > 0
 };
@@ -168,6 +189,7 @@ CcxResults read_results(const fs::path& dir, const std::string& job, fem::Index 
   // CPRESS: the fourth of COPEN, CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2.
   for (const auto& [node, v] : frd_block(dir / (job + ".frd"), "CONTACT", 6)) {
     r.peak_pressure_pa = std::max(r.peak_pressure_pa, v[3]);
+    r.pressure_pa[node] = v[3];
     r.contact_nodes += v[3] > 0.0;
   }
   const std::vector<fem::StressField> stress = fem::read_calculix_frd_stresses(dir / (job + ".frd"), all_nodes);
@@ -178,22 +200,26 @@ CcxResults read_results(const fs::path& dir, const std::string& job, fem::Index 
   return r;
 }
 
-TEST(PinContactCalculixVerification, PeakPressureAndVonMisesOfALugAgreeWithCalculix) {
+TEST(PinContactCalculixVerification, PressureInsideTheArcAndVonMisesOfALugAgreeWithCalculix) {
   if (!have_ccx()) GTEST_SKIP() << "ccx not found (apt-get install calculix-ccx)";
   // The pin pushes the lug towards its head, 30 deg off the lug's axis
   // (no symmetry helps either code).
   constexpr double kForce = 5e3, kDirection = 150 * kPi / 180;
   // Penalty: about 100 E / h (h: the smallest cell at the bore, 0.9 mm): the
   // overclosure at 10 MPa is 5e-10 m, 4e-5 of the pin's motion. ccx's peak
-  // CPRESS depends on it (2e15: 10.7 MPa, 2e16: 25.6 MPa, 2e17: 31.8 MPa;
-  // the stresses and the pressure away from the contact's edges do not):
-  // the peak sits at an edge of the contact arc, where ccx's pressure
-  // oscillates from one integration point to the next (docs/contact.md).
+  // CPRESS, at an end of the contact arc, depends on it (header); what is
+  // compared does not.
   constexpr double kPenaltyPaPerM = 2e16;
 
-  // Two layers through the thickness (4 608 nodes) keep ccx's run near 25 s.
+  // Four layers through the thickness: the mid-thickness row of corners is
+  // then two cells from either face. With two layers (one cell from the
+  // faces, across which each code's pressure basis, linear or quadratic, has
+  // to follow the pressure's variation through the thickness) the compared
+  // corners differed by 1.8 to 5.1 %. Six cells radially (not the default 8)
+  // keep ccx's run near 45 s (8: 67 s, the same pressures to 0.05 %).
   testing::MirroredLugOptions options;
-  options.thickness_divisions = 2;
+  options.thickness_divisions = 4;
+  options.radial_divisions = 6;
   const fem::FeModel lug = testing::clamped_lug_model(options);
   const Log log = Log::quiet();
   testing::LugPinContact contact(lug, log);
@@ -260,26 +286,80 @@ TEST(PinContactCalculixVerification, PeakPressureAndVonMisesOfALugAgreeWithCalcu
     gauss_peak = std::max(gauss_peak, fem::von_mises(gauss.stress_pa.row(q).transpose()));
   const double nodal_peak = fem::recover_nodal_stress(lug.mesh, materials, ours.displacement).von_mises_pa.maxCoeff();
 
-  const double dp = ccx.peak_pressure_pa / ours.state.peak_pressure_pa - 1;
+  // The arc's mid-thickness row: the bore's corner nodes at z = t/2, by
+  // their angle from the force (rad, (-pi, pi]).
+  struct RowCorner {
+    double angle_rad;
+    double ours_pa, ccx_pa;
+  };
+  std::vector<RowCorner> row;
+  const double mid_z = 0.5 * options.thickness_m;
+  for (fem::Index c = 0; c < contact.bore().size(); ++c) {
+    const fem::Index n = contact.bore().corner_nodes()[size_t(c)];
+    if (std::abs(lug.mesh.nodes(n, 2) - mid_z) > 1e-9 * options.thickness_m) continue;
+    const double angle = std::remainder(std::atan2(lug.mesh.nodes(n, 1), lug.mesh.nodes(n, 0)) - kDirection, 2 * kPi);
+    const auto it = ccx.pressure_pa.find(n + 1);
+    row.push_back({angle, ours.contact.pressure[c], it == ccx.pressure_pa.end() ? 0.0 : it->second});
+  }
+  std::sort(row.begin(), row.end(), [](const RowCorner& a, const RowCorner& b) { return a.angle_rad < b.angle_rad; });
+  const double spacing_rad = 2 * kPi / double(row.size());
+  ASSERT_EQ(row.size(), size_t(2 * options.half_turn_divisions)) << "no mid-thickness row of bore corners";
+  // Each code's arc on the row: its first and last corner with a positive
+  // pressure (the arc is one piece about the force, less than a half turn
+  // on either side).
+  auto arc_ends = [&](double RowCorner::*pressure) {
+    std::array<double, 2> ends{kPi, -kPi};
+    for (const RowCorner& r : row)
+      if (r.*pressure > 0.0) ends = {std::min(ends[0], r.angle_rad), std::max(ends[1], r.angle_rad)};
+    return ends;
+  };
+  const std::array<double, 2> our_arc = arc_ends(&RowCorner::ours_pa), ccx_arc = arc_ends(&RowCorner::ccx_pa);
+  const double half_arc = 0.5 * (our_arc[1] - our_arc[0]), inside = 0.6 * half_arc;
+
   const double dg = ccx.peak_gauss_von_mises_pa / gauss_peak - 1;
   const double dn = ccx.nodal_von_mises_pa.maxCoeff() / nodal_peak - 1;
   std::printf("lug %ld nodes, pin %ld nodes, penalty %.1e Pa/m; ccx %.1f s\n"
               "  pin motion (%.4e, %.4e) m -> ccx pin reaction (%.2f, %.2f, %.2e) N (|F| %.2f N; kinetofem's tilt "
               "%.1e rad)\n"
-              "  peak contact pressure: kinetofem %.4f MPa (%d corners in contact, arc %.1f deg), ccx CPRESS %.4f MPa "
-              "(%d slave nodes): %+.2f %%\n"
-              "  peak von Mises at the integration points: kinetofem %.4f MPa, ccx %.4f MPa: %+.2f %%\n"
-              "  peak von Mises at the nodes: kinetofem %.4f MPa, ccx %.4f MPa: %+.2f %%\n",
+              "  contact arc at mid-thickness, from the force: kinetofem %.2f to %.2f deg, ccx %.2f to %.2f deg "
+              "(corner spacing %.2f deg)\n"
+              "  contact pressure at mid-thickness (compared within %.2f deg of the force, 60 %% of kinetofem's "
+              "half-arc):\n",
               long(lug_nodes), long(pin.node_count()), kPenaltyPaPerM, seconds, pin_motion.x(), pin_motion.y(),
               ccx.pin_reaction_n.x(), ccx.pin_reaction_n.y(), ccx.pin_reaction_n.z(), ccx.pin_reaction_n.norm(),
-              ours.contact.pin_motion.tail<2>().cwiseAbs().maxCoeff(), ours.state.peak_pressure_pa * 1e-6,
-              ours.state.corners_in_contact, ours.state.arc_rad * 180 / kPi, ccx.peak_pressure_pa * 1e-6,
-              ccx.contact_nodes, 100 * dp, gauss_peak * 1e-6, ccx.peak_gauss_von_mises_pa * 1e-6, 100 * dg,
-              nodal_peak * 1e-6, ccx.nodal_von_mises_pa.maxCoeff() * 1e-6, 100 * dn);
+              ours.contact.pin_motion.tail<2>().cwiseAbs().maxCoeff(), our_arc[0] * 180 / kPi,
+              our_arc[1] * 180 / kPi, ccx_arc[0] * 180 / kPi, ccx_arc[1] * 180 / kPi, spacing_rad * 180 / kPi,
+              inside * 180 / kPi);
+  int compared = 0;
+  double worst = 0.0;
+  for (const RowCorner& r : row) {
+    if (!(r.ours_pa > 0.0 || r.ccx_pa > 0.0)) continue;
+    const bool inner = std::abs(r.angle_rad) <= inside;
+    const double d = (r.ccx_pa - r.ours_pa) / std::max(r.ours_pa, r.ccx_pa);
+    std::printf("    %+7.2f deg (%7.2f deg in the lug): kinetofem %8.4f MPa, ccx %8.4f MPa: %+7.2f %%%s\n",
+                r.angle_rad * 180 / kPi, std::remainder(r.angle_rad + kDirection, 2 * kPi) * 180 / kPi,
+                r.ours_pa * 1e-6, r.ccx_pa * 1e-6, 100 * d, inner ? " (compared)" : "");
+    if (!inner) continue;
+    EXPECT_LT(std::abs(d), 0.05) << "at " << r.angle_rad * 180 / kPi << " deg from the force";
+    worst = std::max(worst, std::abs(d));
+    ++compared;
+  }
+  std::printf("  %d corners compared, largest difference %.2f %% of the larger value\n"
+              "  peak von Mises at the integration points: kinetofem %.4f MPa, ccx %.4f MPa: %+.2f %%\n"
+              "  peak von Mises at the nodes: kinetofem %.4f MPa, ccx %.4f MPa: %+.2f %%\n"
+              "  not compared: peak contact pressure kinetofem %.4f MPa (%d corners in contact, arc %.1f deg), ccx "
+              "CPRESS %.4f MPa (%d slave nodes): at the arc's ends, where ccx's value follows the penalty "
+              "(docs/contact.md)\n",
+              compared, 100 * worst, gauss_peak * 1e-6, ccx.peak_gauss_von_mises_pa * 1e-6, 100 * dg,
+              nodal_peak * 1e-6, ccx.nodal_von_mises_pa.maxCoeff() * 1e-6, 100 * dn,
+              ours.state.peak_pressure_pa * 1e-6, ours.state.corners_in_contact, ours.state.arc_rad * 180 / kPi,
+              ccx.peak_pressure_pa * 1e-6, ccx.contact_nodes);
   // The same problem: ccx's pin carries about the force kinetofem's pin
   // motion came from (the penalty's overclosure only softens it a little).
   EXPECT_NEAR(ccx.pin_reaction_n.norm(), kForce, 0.05 * kForce);
-  EXPECT_LT(std::abs(dp), 0.05);
+  EXPECT_GE(compared, 9) << "too few corners inside the arc to compare";
+  EXPECT_LE(std::abs(ccx_arc[0] - our_arc[0]), spacing_rad * (1 + 1e-9));
+  EXPECT_LE(std::abs(ccx_arc[1] - our_arc[1]), spacing_rad * (1 + 1e-9));
   EXPECT_LT(std::abs(dg), 0.05);
   EXPECT_LT(std::abs(dn), 0.05);
 }
