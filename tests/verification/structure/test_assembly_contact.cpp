@@ -151,46 +151,6 @@ TEST(AssemblyContact, TheContactCarriesTheJointLoadsAndThePointSplitAddsUp) {
 namespace kinetofem::structure {
 namespace {
 
-// A parallelogram four-bar of two-bore links (crank link1 from the ground's
-// origin, coupler link2, rocker link3 from the ground's P4 = (0.24, 0)),
-// the crank driven 20 degrees down from upright under gravity with a 5 kg
-// mass at the coupler's far bore: statically determinate in the plane,
-// indeterminate out of it (four pins, three bodies), so the pins' motions in
-// their bores meet the structure's stiffness (the QP's block C).
-mech::MultibodyModel parallelogram() {
-  constexpr double kDegree = std::numbers::pi / 180.0;
-  mech::MultibodyModel m;
-  m.name = "parallelogram";
-  m.characteristic_length_m = 0.24;
-  m.gravity = {0.0, -9.81};
-  mech::Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  ground.points["P4"] = {0.24, 0.0};
-  mech::Body link;
-  loads::assign_mass_properties(link, testing::two_bore_link_model());
-  link.points["B2"] = {0.24, 0.0};
-  mech::Body link1 = link, link2 = link, link3 = link;
-  link1.name = "link1";
-  link1.pose = {0.0, 0.0, 90 * kDegree};
-  link2.name = "link2";
-  link2.pose = {0.0, 0.24, 0.0};
-  link2.point_masses.push_back({"mass", 5.0, {0.24, 0.0}});
-  link3.name = "link3";
-  link3.pose = {0.24, 0.0, 90 * kDegree};
-  m.bodies = {ground, link1, link2, link3};
-  m.joints.push_back({"J1", mech::JointType::Revolute, "ground", "origin", "link1", "origin"});
-  m.joints.push_back({"J2", mech::JointType::Revolute, "link1", "B2", "link2", "origin"});
-  m.joints.push_back({"J3", mech::JointType::Revolute, "link2", "B2", "link3", "B2"});
-  m.joints.push_back({"J4", mech::JointType::Revolute, "ground", "P4", "link3", "origin"});
-  mech::MotionDrive d;
-  d.name = "D1";
-  d.coordinate = {mech::CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}};
-  d.law = std::make_shared<mech::CycloidalLaw>(-20 * kDegree, 0.5);
-  m.motion_drives = {d};
-  return m;
-}
-
 std::vector<Part> parallelogram_parts(double clearance) {
   const BoreLoad contact = BoreLoad::Contact;
   std::vector<Part> parts(3);
@@ -215,7 +175,7 @@ TEST(AssemblyContact, AnIndeterminateLoopKeepsEquilibriumAndItsSplit) {
   // penetration beyond 1e-12 m; the unit-load split of the mass point's
   // displacement adds up to it (Maxwell-Betti, 1e-9); the two contact
   // responses are reciprocal (1e-9).
-  const mech::MultibodyModel model = parallelogram();
+  const mech::MultibodyModel model = testing::parallelogram();
   const auto frames = frames_of(model, even_times(0.5, 4));
   AssemblyOptions options;
   options.points = {{"mass", "link2", "B2", "bore_2"}};

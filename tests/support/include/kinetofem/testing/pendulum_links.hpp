@@ -5,6 +5,7 @@
 // the FE mesh's mass properties, so every link's loads are in equilibrium.
 #include <memory>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "kinetofem/loads/link_loads.hpp"
@@ -40,37 +41,79 @@ inline fem::FeModel supported_two_bore_link() {
   return fe;
 }
 
-// A double pendulum of two such links driven through 60 and -90 degrees in
-// 0.5 s, a 3 kg tip mass at the second link's far bore.
-inline mech::MultibodyModel double_pendulum() {
-  constexpr double kDeg = std::numbers::pi / 180.0;
+// A mechanism of two-bore links under gravity -y: its fixed ground (body 0)
+// and a link body to copy (the mesh's mass properties; its far bore's
+// point "B2" = (0.24, 0)).
+inline mech::MultibodyModel two_bore_link_mechanism(const std::string& name, double characteristic_length_m,
+                                                    mech::Body& link) {
   mech::MultibodyModel m;
-  m.name = "double pendulum";
-  m.characteristic_length_m = 0.3;
+  m.name = name;
+  m.characteristic_length_m = characteristic_length_m;
   m.gravity = {0.0, -9.81};
   mech::Body ground;
   ground.name = "ground";
   ground.fixed = true;
+  m.bodies = {ground};
+  link = mech::Body{};
+  loads::assign_mass_properties(link, two_bore_link_model());
+  link.points["B2"] = {0.24, 0.0};
+  return m;
+}
+
+// An angle drive of body_j against body_i (their origins) by `law`.
+inline mech::MotionDrive angle_drive(const std::string& name, const std::string& body_i, const std::string& body_j,
+                                     std::shared_ptr<mech::MotionLaw> law) {
+  mech::MotionDrive d;
+  d.name = name;
+  d.coordinate = {mech::CoordinateType::Angle, body_i, "origin", body_j, "origin", {1, 0}};
+  d.law = std::move(law);
+  return d;
+}
+
+// A double pendulum of two such links driven through 60 and -90 degrees in
+// 0.5 s, a 3 kg tip mass at the second link's far bore.
+inline mech::MultibodyModel double_pendulum() {
+  constexpr double kDeg = std::numbers::pi / 180.0;
   mech::Body link1;
+  mech::MultibodyModel m = two_bore_link_mechanism("double pendulum", 0.3, link1);
   link1.name = "link1";
-  loads::assign_mass_properties(link1, two_bore_link_model());
-  link1.points["B2"] = {0.24, 0.0};
   mech::Body link2 = link1;
   link2.name = "link2";
   link2.pose = {0.24, 0.0, 0.0};
   link2.point_masses.push_back({"tip", 3.0, {0.24, 0.0}});
-  m.bodies = {ground, link1, link2};
+  m.bodies.push_back(link1);
+  m.bodies.push_back(link2);
   m.joints.push_back({"J1", mech::JointType::Revolute, "ground", "origin", "link1", "origin"});
   m.joints.push_back({"J2", mech::JointType::Revolute, "link1", "B2", "link2", "origin"});
-  mech::MotionDrive d1;
-  d1.name = "D1";
-  d1.coordinate = {mech::CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}};
-  d1.law = std::make_shared<mech::CycloidalLaw>(60 * kDeg, 0.5);
-  mech::MotionDrive d2;
-  d2.name = "D2";
-  d2.coordinate = {mech::CoordinateType::Angle, "link1", "origin", "link2", "origin", {1, 0}};
-  d2.law = std::make_shared<mech::Polynomial345Law>(-90 * kDeg, 0.5);
-  m.motion_drives = {d1, d2};
+  m.motion_drives = {angle_drive("D1", "ground", "link1", std::make_shared<mech::CycloidalLaw>(60 * kDeg, 0.5)),
+                     angle_drive("D2", "link1", "link2", std::make_shared<mech::Polynomial345Law>(-90 * kDeg, 0.5))};
+  return m;
+}
+
+// A parallelogram four-bar of such links (crank link1 from the ground's
+// origin, coupler link2, rocker link3 from the ground's P4 = (0.24, 0)), the
+// crank driven 20 degrees down from upright in 0.5 s under gravity, a 5 kg
+// mass "mass" at the coupler's far bore: statically determinate in the
+// plane, indeterminate out of it (four pins, three bodies).
+inline mech::MultibodyModel parallelogram() {
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  mech::Body link;
+  mech::MultibodyModel m = two_bore_link_mechanism("parallelogram", 0.24, link);
+  m.bodies[0].points["P4"] = {0.24, 0.0};
+  mech::Body link1 = link, link2 = link, link3 = link;
+  link1.name = "link1";
+  link1.pose = {0.0, 0.0, 90 * kDeg};
+  link2.name = "link2";
+  link2.pose = {0.0, 0.24, 0.0};
+  link2.point_masses.push_back({"mass", 5.0, {0.24, 0.0}});
+  link3.name = "link3";
+  link3.pose = {0.24, 0.0, 90 * kDeg};
+  m.bodies.insert(m.bodies.end(), {link1, link2, link3});
+  m.joints.push_back({"J1", mech::JointType::Revolute, "ground", "origin", "link1", "origin"});
+  m.joints.push_back({"J2", mech::JointType::Revolute, "link1", "B2", "link2", "origin"});
+  m.joints.push_back({"J3", mech::JointType::Revolute, "link2", "B2", "link3", "B2"});
+  m.joints.push_back({"J4", mech::JointType::Revolute, "ground", "P4", "link3", "origin"});
+  m.motion_drives = {angle_drive("D1", "ground", "link1", std::make_shared<mech::CycloidalLaw>(-20 * kDeg, 0.5))};
   return m;
 }
 
@@ -94,11 +137,7 @@ inline mech::MultibodyModel turning_link(const fem::FeModel& model, const Eigen:
   link.point_masses.push_back({"mass", mass_kg, far_point_m});
   m.bodies = {ground, link};
   m.joints.push_back({"J1", mech::JointType::Revolute, "ground", "origin", "link", "origin"});
-  mech::MotionDrive d;
-  d.name = "D1";
-  d.coordinate = {mech::CoordinateType::Angle, "ground", "origin", "link", "origin", {1, 0}};
-  d.law = std::make_shared<mech::CycloidalLaw>(2 * std::numbers::pi, turn_time_s);
-  m.motion_drives = {d};
+  m.motion_drives = {angle_drive("D1", "ground", "link", std::make_shared<mech::CycloidalLaw>(2 * std::numbers::pi, turn_time_s))};
   return m;
 }
 
