@@ -8,6 +8,7 @@
 // verification/geometry/beam_link.geo). The bar in uniaxial tension
 // (verification/geometry/bar.geo) is checked here only.
 #include <algorithm>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "kinetofem/verification/accelerated_link.hpp"
 #include "kinetofem/verification/direct_solvers.hpp"
 #include "kinetofem/verification/lame_cylinder.hpp"
+#include "kinetofem/verification/persson_pin.hpp"
 #include "kinetofem/verification/patch_test.hpp"
 #include "kinetofem/verification/verification_geometry.hpp"
 
@@ -124,6 +126,23 @@ std::vector<CheckRow> accelerated_link(const CheckContext&) {
                            r.beam_stress_pa * 1e-6, r.bottom_pa * 1e-6, kv::kBeamTheoryTolerance, why)};
 }
 
+std::vector<CheckRow> persson_pin(const CheckContext&) {
+  const Log log = Log::quiet();
+  const kv::PerssonPlate plate(log);
+  const char* why = "a 20 R plate, 192 corners around the hole (half-angle within half a spacing): 5 %";
+  std::vector<CheckRow> rows;
+  for (const double clearance : {0.0, 15e-6}) {
+    const kv::PerssonPinResult r = plate.solve(clearance, 1000.0);
+    const std::string what = clearance == 0 ? "elastic pin in its hole, line-to-line" : "elastic pin, 15 um clearance";
+    rows.push_back(compare_relative(what + ": peak contact pressure", "Persson, p(0) (docs/contact.md)", "MPa",
+                                    r.reference_peak_pa * 1e-6, r.peak_pa * 1e-6, kv::kPerssonTolerance, why));
+    rows.push_back(compare_relative(what + ": contact half-angle", "Persson, E* dR / P", "deg",
+                                    r.reference_half_angle_rad * 180 / std::numbers::pi,
+                                    r.half_angle_rad * 180 / std::numbers::pi, kv::kPerssonTolerance, why));
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::vector<Check> fem_checks() {
@@ -133,6 +152,7 @@ std::vector<Check> fem_checks() {
       {"fem.lame_cylinder", "FEM", true, lame_cylinder},
       {"fem.cholmod_vs_ldlt", "FEM", true, cholmod_vs_ldlt},
       {"loads.accelerated_link", "load transfer", true, accelerated_link},
+      {"contact.persson_pin", "pins in contact", true, persson_pin},
   };
 }
 
