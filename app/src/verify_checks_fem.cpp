@@ -152,7 +152,7 @@ std::vector<Check> fem_checks() {
       {"fem.lame_cylinder", "FEM", true, lame_cylinder},
       {"fem.cholmod_vs_ldlt", "FEM", true, cholmod_vs_ldlt},
       {"loads.accelerated_link", "load transfer", true, accelerated_link},
-      {"contact.persson_pin", "pins in contact", true, persson_pin},
+      {"contact.persson_pin", "load transfer", true, persson_pin},
   };
 }
 
