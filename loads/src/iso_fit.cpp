@@ -102,4 +102,8 @@ FitClearance fit_clearance(const std::string& fit, double diameter_m) {
   return {(0.0 - shaft_upper) * 1e-6, (hole_upper - shaft_lower) * 1e-6};
 }
 
+double radial_clearance(double clearance_m, const std::string& fit, double bore_diameter_m) {
+  return fit.empty() ? clearance_m : fit_clearance(fit, bore_diameter_m).mean_radial_m();
+}
+
 }  // namespace kinetofem::loads

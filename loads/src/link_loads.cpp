@@ -109,13 +109,11 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
       for (const fem::Index n : couplings_[size_t(a.coupling)]->nodes())
         radius += (mesh.nodes.row(n).transpose() - centre).head<2>().norm() /
                   double(couplings_[size_t(a.coupling)]->nodes().size());
-      double clearance = attachment.clearance_m;
-      if (!attachment.fit.empty()) {
-        try {
-          clearance = fit_clearance(attachment.fit, 2 * radius).mean_radial_m();
-        } catch (const Error& e) {
-          fail("link '{}': joint '{}' on face set '{}': {}", link.body, joint.name, attachment.face_set, e.what());
-        }
+      double clearance = 0.0;
+      try {
+        clearance = radial_clearance(attachment.clearance_m, attachment.fit, 2 * radius);
+      } catch (const Error& e) {
+        fail("link '{}': joint '{}' on face set '{}': {}", link.body, joint.name, attachment.face_set, e.what());
       }
       contact_bores_.push_back({joint.name, {attachment.face_set, centre, Eigen::Vector3d::UnitZ()},
                                 12 + 6 * a.coupling, clearance, 2 * radius, attachment.pin_material});

@@ -941,9 +941,8 @@ void ElasticAssembly::Impl::find_contact_bores() {
         // the pin's motion are about the interface's reference.
         bore.surface = std::make_unique<fem::BoreContactSurface>(
             mesh, iface.face_set, part.couplings[size_t(iface.local)]->centroid(), Vector3d::UnitZ());
-        bore.clearance_m = attachment->fit.empty()
-                               ? attachment->clearance_m
-                               : loads::fit_clearance(attachment->fit, 2.0 * bore.surface->radius_m()).mean_radial_m();
+        bore.clearance_m =
+            loads::radial_clearance(attachment->clearance_m, attachment->fit, 2.0 * bore.surface->radius_m());
       } catch (const Error& e) {
         fail("{}: joint '{}' on face set '{}': {}", part.label, iface.name, iface.face_set, e.what());
       }

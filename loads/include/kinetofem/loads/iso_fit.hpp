@@ -38,5 +38,9 @@ void check_fit(const std::string& fit);
 // The fit's clearance at nominal diameter `diameter_m`; throws Error for a
 // fit check_fit refuses or a diameter outside 1 .. 500 mm.
 FitClearance fit_clearance(const std::string& fit, double diameter_m);
+// The radial clearance of a pin in contact as a case gives it: clearance_m,
+// or (fit not empty) the fit's mean radial clearance at the bore's
+// diameter. Throws Error like fit_clearance.
+double radial_clearance(double clearance_m, const std::string& fit, double bore_diameter_m);
 
 }  // namespace kinetofem::loads
