@@ -548,7 +548,12 @@ std::string schema_template(const std::vector<KeySpec>& schema, const std::strin
   for (const auto& s : schema) plausible.push_back(plausible_range(s));
   for (const auto& table : tables) {
     const bool array = table.size() > 2 && table.substr(table.size() - 2) == "[]";
-    out += array ? "\n[[" + table.substr(0, table.size() - 2) + "]]\n" : "\n[" + table + "]\n";
+    // A table inside an array's element ("transmission[].input") follows its
+    // array's header, so TOML puts it in that last element: [transmission.input].
+    std::string header = table;
+    for (auto at = header.find("[]."); at != std::string::npos; at = header.find("[]."))
+      header.erase(at, 2);
+    out += array ? "\n[[" + table.substr(0, table.size() - 2) + "]]\n" : "\n[" + header + "]\n";
     for (const auto& s : plausible) {
       if (s.type == KeySpec::Type::TableArray || table_of(s) != table) continue;
       const auto dot = s.path.rfind('.');

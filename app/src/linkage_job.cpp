@@ -185,6 +185,30 @@ const std::vector<KeySpec>& linkage_schema() {
     add_motion_law_keys(s, "motion_drive[].", "law", {.default_law = "polynomial345"});
     s.push_back({.path = "motion_drive[].initial_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .doc = "s_0 of an angle; default: from the initial poses"});
     s.push_back({.path = "motion_drive[].initial_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .doc = "s_0 of a displacement; default: from the initial poses"});
+    // constant-ratio transmissions (SPEC §4's belts, chains, gear trains): docs/transmissions.md
+    s.push_back({.path = "transmission", .type = Type::TableArray,
+                 .doc = "belts, chains, gear trains between two relative angles: s_out = ratio * s_in + reference (constraints)"});
+    s.push_back({.path = "transmission[].name", .type = Type::String, .doc = "name", .required = true});
+    for (const char* side : {"input", "output"}) {
+      const std::string p = std::string("transmission[].") + side + ".";
+      s.push_back({.path = p + "body_i", .type = Type::String,
+                   .doc = fmt::format("{} angle s = theta_j - theta_i: its reference body (the moment's reaction acts on it)", side),
+                   .required = true});
+      s.push_back({.path = p + "body_j", .type = Type::String,
+                   .doc = fmt::format("{} angle s = theta_j - theta_i: its turned body (the moment acts on it)", side),
+                   .required = true});
+    }
+    s.push_back({.path = "transmission[].ratio", .type = Type::Number,
+                 .doc = "i in s_out = i * s_in + reference, finite and non-zero; SPEC §4's phi_{k+1,k} = i_k phi_{k,k-1} "
+                        "(an open belt from a pulley of radius r_in to one of r_out: -r_in/r_out; a gear pair: +r_in/r_out)",
+                 .required = true});
+    s.push_back({.path = "transmission[].kind", .type = Type::String, .default_text = "belt", .allowed = {"belt", "gear"},
+                 .doc = "belt (belt, chain, band: the force is the effective pull) or gear (the force is the tangential tooth force)"});
+    s.push_back({.path = "transmission[].radius_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0,
+                 .min_exclusive = true, .doc = "the output's pulley (sprocket) or pitch radius: force = output moment / radius",
+                 .required = true});
+    s.push_back({.path = "transmission[].reference_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg,
+                 .doc = "the constant c of s_out = i * s_in + c; default: from the initial poses"});
     s.push_back({.path = "force_drive", .type = Type::TableArray, .doc = "motors: an effort on the relative coordinate"});
     s.push_back({.path = "force_drive[].name", .type = Type::String, .doc = "name", .required = true});
     add_coordinate_keys(s, "force_drive[].", true);
@@ -284,10 +308,10 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
     b.point_masses.push_back({c.text_value("point_mass[].name", k), c.number("point_mass[].mass_kg", k), at});
   }
 
-  std::set<std::string> constraint_names;  // joints and motion drives share one namespace
+  std::set<std::string> constraint_names;  // joints, motion drives and transmissions share one namespace
   for (std::size_t k = 0; k < c.count("joint"); ++k) {
     mech::Joint j;
-    j.name = r.name_key("joint[].name", k, "joint or motion drive", constraint_names);
+    j.name = r.name_key("joint[].name", k, "joint, motion drive or transmission", constraint_names);
     const std::string type = c.text_value("joint[].type", k);
     const auto named = mech::joint_type_named(type);
     require(named.has_value(), "{} = \"{}\": unknown joint type", c.where("joint[].type", k), type);
@@ -344,11 +368,31 @@ mech::MultibodyModel read_linkage_model(const CaseFile& c) {
     m.point_forces.push_back(pf);
   }
 
+  for (std::size_t k = 0; k < c.count("transmission"); ++k) {
+    const std::string p = "transmission[].";
+    mech::Transmission t;
+    t.name = r.name_key(p + "name", k, "joint, motion drive or transmission", constraint_names);
+    for (auto [side, coordinate] : {std::pair{"input.", &t.input}, std::pair{"output.", &t.output}}) {
+      const std::size_t bi = r.body(m.bodies, p + side + "body_i", k), bj = r.body(m.bodies, p + side + "body_j", k);
+      require(bi != bj, "{} = \"{}\": body_j must differ from body_i", c.where(p + side + "body_j", k), m.bodies[bj].name);
+      coordinate->type = mech::CoordinateType::Angle;
+      coordinate->body_i = m.bodies[bi].name;
+      coordinate->body_j = m.bodies[bj].name;
+    }
+    t.ratio = c.number(p + "ratio", k);
+    require(t.ratio != 0.0, "{} = 0: transmission '{}' would hold its output still whatever its input does; a ratio "
+            "must not be zero", c.where(p + "ratio", k), t.name);
+    t.kind = c.text_value(p + "kind", k) == "gear" ? mech::TransmissionKind::Gear : mech::TransmissionKind::Belt;
+    t.radius_m = c.number(p + "radius_mm", k);
+    if (c.has(p + "reference_deg", k)) t.reference = c.number(p + "reference_deg", k);
+    m.transmissions.push_back(t);
+  }
+
   std::set<std::string> drive_names;
   for (std::size_t k = 0; k < c.count("motion_drive"); ++k) {
     const std::string p = "motion_drive[].";
     mech::MotionDrive d;
-    d.name = r.name_key(p + "name", k, "joint or motion drive", constraint_names);
+    d.name = r.name_key(p + "name", k, "joint, motion drive or transmission", constraint_names);
     drive_names.insert(d.name);
     d.coordinate = r.coordinate(m.bodies, p, k);
     const bool angle = d.coordinate.type == mech::CoordinateType::Angle;
@@ -413,9 +457,9 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
   driver::MotionStressCase run_case;
   run_case.model = read_linkage_model(c);
   const mech::MultibodyModel& m = run_case.model;
-  const Log log = start_case_log(c, options, name, fmt::format("linkage: {} bodies, {} joints, {} motion drives, {} force "
+  const Log log = start_case_log(c, options, name, fmt::format("linkage: {} bodies, {} joints, {} motion drives, {} transmissions, {} force "
                                  "drives, {} springs, {} parts", m.bodies.size(), m.joints.size(), m.motion_drives.size(),
-                                 m.force_drives.size(), m.springs.size(), c.count("part")));
+                                 m.transmissions.size(), m.force_drives.size(), m.springs.size(), c.count("part")));
   run_case.parts = read_parts(c, m);
   for (auto& part : run_case.parts) part.file_options.trusted = options.trust_part_files;
   run_case.times = mech::equally_spaced_times(c.number("simulation.duration_s"), c.integer("simulation.output_times"));

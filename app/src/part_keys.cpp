@@ -156,6 +156,14 @@ void add_part_keys(std::vector<KeySpec>& s) {
     s.push_back({.path = std::string(table) + "[].face_i", .type = Type::String, .doc = "face set of body_i's part the drive's reaction torque enters through"});
     s.push_back({.path = std::string(table) + "[].face_j", .type = Type::String, .doc = "face set of body_j's part the drive's torque enters through (the shaft bore)"});
   }
+  for (const char* side : {"input", "output"}) {
+    const std::string p = std::string("transmission[].") + side + ".";
+    s.push_back({.path = p + "face_i", .type = Type::String,
+                 .doc = fmt::format("face set of the {} angle's body_i part the reaction moment enters through", side)});
+    s.push_back({.path = p + "face_j", .type = Type::String,
+                 .doc = fmt::format("face set of the {} angle's body_j part the transmitted moment enters through (the "
+                                    "pulley's, sprocket's or gear's bore)", side)});
+  }
   s.push_back({.path = "point_mass[].face", .type = Type::String, .doc = "face set of the body's part the mass is mounted on"});
   s.push_back({.path = "spring[].face_i", .type = Type::String, .doc = "face set of body_i's part the spring acts through"});
   s.push_back({.path = "spring[].face_j", .type = Type::String, .doc = "face set of body_j's part the spring acts through"});
@@ -369,6 +377,18 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
   };
   drives("motion_drive", model.motion_drives);
   drives("force_drive", model.force_drives);
+  for (std::size_t k = 0; k < c.count("transmission"); ++k) {
+    const mech::Transmission& t = model.transmissions.at(k);
+    const std::string what = fmt::format("transmission '{}'", t.name);
+    for (const auto side : {loads::TransmissionSide::Input, loads::TransmissionSide::Output}) {
+      const bool input = side == loads::TransmissionSide::Input;
+      const mech::RelativeCoordinate& rc = input ? t.input : t.output;
+      const std::string p = input ? "transmission[].input." : "transmission[].output.";
+      const std::string fi = face(p + "face_i", k, rc.body_i, what), fj = face(p + "face_j", k, rc.body_j, what);
+      if (!fi.empty()) part_for(rc.body_i)->attachments.transmissions.push_back({t.name, side, fi});
+      if (!fj.empty()) part_for(rc.body_j)->attachments.transmissions.push_back({t.name, side, fj});
+    }
+  }
   for (std::size_t k = 0; k < c.count("point_mass"); ++k) {
     const std::string body = c.text_value("point_mass[].body", k), name = c.text_value("point_mass[].name", k);
     const std::string f = face("point_mass[].face", k, body, fmt::format("point mass '{}'", name));

@@ -169,6 +169,26 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     d.coupling = coupling_on(attachment.face_set);
     drives_.push_back(std::move(d));
   }
+  for (const auto& attachment : link.transmissions) {
+    TransmissionLoad t;
+    t.name = attachment.transmission;
+    t.side = attachment.side;
+    const mech::Transmission* found = nullptr;
+    for (size_t k = 0; k < model.transmissions.size(); ++k)
+      if (model.transmissions[k].name == t.name) {
+        found = &model.transmissions[k];
+        t.transmission_index = int(k);
+      }
+    require(found != nullptr, "link '{}': the mechanism has no transmission '{}'", link.body, t.name);
+    const bool input = t.side == TransmissionSide::Input;
+    const mech::RelativeCoordinate& coordinate = input ? found->input : found->output;
+    require(coordinate.body_i == link.body || coordinate.body_j == link.body,
+            "link '{}': transmission '{}' does not act on it through its {} coordinate", link.body, t.name,
+            input ? "input" : "output");
+    t.on_j = coordinate.body_j == link.body;
+    t.coupling = coupling_on(attachment.face_set);
+    transmissions_.push_back(std::move(t));
+  }
   auto body_of = [&](const std::string& name) {
     for (size_t b = 0; b < model.bodies.size(); ++b)
       if (model.bodies[b].name == name) return int(b);
@@ -287,6 +307,13 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
     const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
     through(d.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(d.coupling)]->centroid());
     magnitude += std::abs(effort) / length_scale_;
+  }
+  for (const auto& tr : transmissions_) {
+    const mech::TransmissionFrame& tf = frame.transmissions.at(size_t(tr.transmission_index));
+    const double side_moment = tr.side == TransmissionSide::Input ? tf.moment_input_Nm : tf.moment_output_Nm;
+    const Eigen::Vector3d moment(0, 0, tr.on_j ? side_moment : -side_moment);
+    through(tr.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(tr.coupling)]->centroid());
+    magnitude += std::abs(side_moment) / length_scale_;
   }
 
   for (const auto& sp : springs_) {

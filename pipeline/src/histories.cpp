@@ -64,6 +64,12 @@ void write_histories(post::ResultsWriter& w, const mech::MultibodyModel& m, cons
     w.write_history(clean(p + "free_length"), "m", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].free_length_m; }, 1));
     w.write_history(clean(p + "wrap_angle"), "rad", column([&](const mech::Frame& f, auto row) { row(0) = f.chains[ch].wrap_angle_rad; }, 1));
   }
+  for (std::size_t k = 0; k < res.frames.front().transmissions.size(); ++k) {
+    const std::string p = "transmission." + res.frames.front().transmissions[k].name + ".";
+    w.write_history(clean(p + "moment_output"), "N*m", column([&](const mech::Frame& f, auto row) { row(0) = f.transmissions[k].moment_output_Nm; }, 1));
+    w.write_history(clean(p + "moment_input"), "N*m", column([&](const mech::Frame& f, auto row) { row(0) = f.transmissions[k].moment_input_Nm; }, 1));
+    w.write_history(clean(p + "force"), "N", column([&](const mech::Frame& f, auto row) { row(0) = f.transmissions[k].force_N; }, 1));
+  }
   w.write_history(clean("energy.kinetic"), "J", column([&](const mech::Frame& f, auto row) { row(0) = f.kinetic_energy_J; }, 1));
   w.write_history(clean("energy.potential"), "J", column([&](const mech::Frame& f, auto row) { row(0) = f.potential_energy_J; }, 1));
   w.write_history(clean("energy.work_drives"), "J", column([&](const mech::Frame& f, auto row) { row(0) = f.work_drives_J; }, 1));

@@ -224,6 +224,8 @@ void check_part_against_model(const Part& part, const mech::MultibodyModel& mode
   for (const auto& j : a.joints) require_face_set(part, j.face_set, fmt::format("joint '{}'", j.joint));
   for (const auto& m : a.point_masses) require_face_set(part, m.face_set, fmt::format("point mass '{}'", m.point_mass));
   for (const auto& d : a.drives) require_face_set(part, d.face_set, fmt::format("drive '{}'", d.drive));
+  for (const auto& t : a.transmissions)
+    require_face_set(part, t.face_set, fmt::format("transmission '{}'", t.transmission));
   for (const auto& s : a.springs) require_face_set(part, s.face_set, fmt::format("spring '{}'", s.spring));
   for (const auto& f : a.point_forces)
     require_face_set(part, f.face_set, fmt::format("point force '{}'", f.point_force));

@@ -42,6 +42,16 @@ MechanismExtremes mechanism_extremes(const mech::MultibodyModel& m, const mech::
                                 ? fmt::format("; max |moment| on {} {:.4g} N m", m.joints[j].body_j, moment)
                                 : "");
   }
+  for (std::size_t k = 0; k < res.frames.front().transmissions.size(); ++k) {
+    double moment = 0, force = 0, t_peak = 0;
+    for (const auto& f : res.frames)
+      if (std::abs(f.transmissions[k].moment_output_Nm) > moment)
+        moment = std::abs(f.transmissions[k].moment_output_Nm), force = std::abs(f.transmissions[k].force_N), t_peak = f.t;
+    const mech::Transmission& tr = m.transmissions[k];
+    out.text += fmt::format("  transmission {:<9} ratio {:g}: max |moment| on {} {:.4g} N m, {} {:.4g} N (t = {:.4g} s)\n",
+                            tr.name, tr.ratio, tr.output.body_j, moment,
+                            tr.kind == mech::TransmissionKind::Gear ? "tooth force" : "belt pull", force, t_peak);
+  }
   const std::size_t n_chains = res.frames.front().chains.size();
   for (std::size_t ch = 0; ch < n_chains; ++ch) {
     double lo = 1e300, hi = -1e300, t_lo = 0;

@@ -554,6 +554,9 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   system = std::make_unique<mech::MultibodySystem>(model);
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
   index_bodies();
+  require(model.transmissions.empty(),
+          "elastic assembly: transmission '{}' of mechanism '{}': the elastic assembly does not model transmissions yet",
+          model.transmissions.empty() ? std::string() : model.transmissions.front().name, model.name);
   for (const Part& part : given) add_part(part, factorized.empty() ? nullptr : factorized[parts.size()]);
   check_member_options();
   for (size_t j = 0; j < model.joints.size(); ++j) add_joint(j);

@@ -95,7 +95,7 @@ int ggl_residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void* user_dat
       const BlockValues b = p->system.evaluate(blk, q, v, t);
       phi.segment(blk.first_row, blk.rows) = b.phi;
       nu.segment(blk.first_row, blk.rows) = b.nu;
-      p->system.scatter(blk.body_i, blk.body_j, b.jac, jac.middleRows(blk.first_row, blk.rows));
+      p->system.scatter(blk, b, jac.middleRows(blk.first_row, blk.rows));
     }
     r.head(n) = yd.head(n) - v + jac.transpose() * y.segment(2 * n + m, m);
     r.segment(n, n) = p->mass.cwiseProduct(yd.segment(n, n)) + jac.transpose() * y.segment(2 * n, m) -

@@ -86,6 +86,31 @@ Frame make_frame(const MultibodySystem& system, double t, const VectorXd& q, con
     if (system.offset(blk.body_i) >= 0) balance[blk.body_i] += load.head<3>();
     if (system.offset(blk.body_j) >= 0) balance[blk.body_j] += load.tail<3>();
     load_scale = std::max(load_scale, load.cwiseAbs().maxCoeff());
+    switch (blk.kind) {
+      case ConstraintKind::Transmission: {
+        const Eigen::Matrix<double, 6, 1> input_load = -values.jac_input.transpose() * lambda;
+        if (system.offset(blk.input_i) >= 0) balance[blk.input_i] += input_load.head<3>();
+        if (system.offset(blk.input_j) >= 0) balance[blk.input_j] += input_load.tail<3>();
+        load_scale = std::max(load_scale, input_load.cwiseAbs().maxCoeff());
+        const Transmission& tr = model.transmissions[blk.source];
+        TransmissionFrame tf;
+        tf.name = blk.name;
+        const Vector3d in_i = system.com_pose(blk.input_i, q), in_j = system.com_pose(blk.input_j, q);
+        const Vector3d out_i = system.com_pose(blk.body_i, q), out_j = system.com_pose(blk.body_j, q);
+        tf.s_in = in_j.z() - in_i.z();
+        tf.s_out = out_j.z() - out_i.z();
+        tf.s_in_dot = system.com_velocity(blk.input_j, qd).z() - system.com_velocity(blk.input_i, qd).z();
+        tf.s_out_dot = system.com_velocity(blk.body_j, qd).z() - system.com_velocity(blk.body_i, qd).z();
+        tf.moment_output_Nm = -lambda(0);
+        tf.moment_input_Nm = blk.ratio * lambda(0);
+        tf.force_N = tf.moment_output_Nm / tr.radius_m;
+        frame.transmissions.push_back(tf);
+        continue;
+      }
+      case ConstraintKind::Drive:
+      case ConstraintKind::Joint:
+        break;
+    }
     if (blk.kind == ConstraintKind::Drive) {
       DriveFrame df;
       df.name = blk.name;

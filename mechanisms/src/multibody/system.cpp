@@ -2,6 +2,7 @@
 
 #include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -149,6 +150,44 @@ MultibodySystem::MultibodySystem(MultibodyModel model) : model_(std::move(model)
     drive_coords_.push_back(c);
   }
 
+  for (std::size_t k = 0; k < model_.transmissions.size(); ++k) {
+    const Transmission& tr = model_.transmissions[k];
+    unique_name(tr.name, "transmission");
+    require(std::isfinite(tr.ratio) && tr.ratio != 0.0,
+            "transmission '{}': the ratio must be a finite non-zero number, got {}", tr.name, tr.ratio);
+    require(std::isfinite(tr.radius_m) && tr.radius_m > 0.0,
+            "transmission '{}': the output's pulley or pitch radius must be positive, got {} m", tr.name, tr.radius_m);
+    require(!tr.reference || std::isfinite(*tr.reference), "transmission '{}': the reference must be finite, got {} rad",
+            tr.name, tr.reference.value_or(0.0));
+    const auto compile_side = [&](const RelativeCoordinate& rc, const char* side) {
+      for (const std::string& body : {rc.body_i, rc.body_j})
+        require(std::any_of(model_.bodies.begin(), model_.bodies.end(), [&](const Body& b) { return b.name == body; }),
+                "transmission '{}': its {} coordinate names body '{}', which the model '{}' does not have", tr.name,
+                side, body, model_.name);
+      require(rc.type == CoordinateType::Angle, "transmission '{}': its {} coordinate must be an angle (theta_j - theta_i)",
+              tr.name, side);
+      return compile(rc, fmt::format("transmission '{}' ({})", tr.name, side));
+    };
+    const CompiledCoordinate in = compile_side(tr.input, "input"), out = compile_side(tr.output, "output");
+    ConstraintBlock blk;
+    blk.name = tr.name;
+    blk.kind = ConstraintKind::Transmission;
+    blk.source = static_cast<int>(k);
+    blk.rows = 1;
+    blk.body_i = out.body_i;
+    blk.body_j = out.body_j;
+    blk.input_i = in.body_i;
+    blk.input_j = in.body_j;
+    blk.s_i = out.s_i;
+    blk.s_j = out.s_j;
+    blk.ratio = tr.ratio;
+    blk.length_row = {false};
+    blk.reference = tr.reference.value_or(coordinate(out, q0, qd0).value - tr.ratio * coordinate(in, q0, qd0).value);
+    blk.first_row = n_rows_;
+    n_rows_ += 1;
+    blocks_.push_back(blk);
+  }
+
   for (const ForceDrive& drive : model_.force_drives) {
     unique_name(drive.name, "force drive");
     force_coords_.push_back(compile(drive.coordinate, drive.name));
@@ -179,7 +218,7 @@ int MultibodySystem::body_index(const std::string& name) const {
 const ConstraintBlock& MultibodySystem::block(const std::string& name) const {
   for (const ConstraintBlock& b : blocks_)
     if (b.name == name) return b;
-  fail("multibody model '{}': no joint or motion drive named '{}'", model_.name, name);
+  fail("multibody model '{}': no joint, motion drive or transmission named '{}'", model_.name, name);
 }
 
 Vector2d MultibodySystem::named_point(int body, const std::string& point) const {
@@ -324,6 +363,17 @@ BlockValues MultibodySystem::evaluate(const ConstraintBlock& blk, const VectorXd
   };
 
   switch (blk.kind) {
+    case ConstraintKind::Transmission: {
+      // Both coordinates are angles (checked on compile): linear, so nu = gamma = 0.
+      const double theta_in = com_pose(blk.input_j, q).z() - com_pose(blk.input_i, q).z();
+      out.phi(0) = (pj.theta - pi.theta) - blk.ratio * theta_in - blk.reference;
+      out.jac(0, 2) = -1.0;
+      out.jac(0, 5) = 1.0;
+      out.jac_input = MatrixXd::Zero(1, 6);
+      out.jac_input(0, 2) = blk.ratio;
+      out.jac_input(0, 5) = -blk.ratio;
+      break;
+    }
     case ConstraintKind::Drive: {
       const CompiledCoordinate c{blk.coordinate, blk.body_i, blk.body_j, blk.s_i, blk.s_j, blk.axis_i};
       const CoordinateValues cv = coordinate(c, q, qd);
@@ -387,6 +437,11 @@ void MultibodySystem::scatter(int body_i, int body_j, const MatrixXd& local, Eig
   if (offset_[body_j] >= 0) global.middleCols(offset_[body_j], 3) += local.rightCols(3);
 }
 
+void MultibodySystem::scatter(const ConstraintBlock& blk, const BlockValues& values, Eigen::Ref<MatrixXd> rows) const {
+  scatter(blk.body_i, blk.body_j, values.jac, rows);
+  if (values.jac_input.size() > 0) scatter(blk.input_i, blk.input_j, values.jac_input, rows);
+}
+
 Eigen::Matrix<double, 6, 1> MultibodySystem::gather(int body_i, int body_j, const VectorXd& v) const {
   Eigen::Matrix<double, 6, 1> out = Eigen::Matrix<double, 6, 1>::Zero();
   if (offset_[body_i] >= 0) out.head<3>() = v.segment<3>(offset_[body_i]);
@@ -424,7 +479,7 @@ MatrixXd MultibodySystem::jacobian(const VectorXd& q, double t) const {
   MatrixXd out = MatrixXd::Zero(n_rows_, n_coordinates());
   const VectorXd qd = VectorXd::Zero(n_coordinates());
   for (const ConstraintBlock& blk : blocks_)
-    scatter(blk.body_i, blk.body_j, evaluate(blk, q, qd, t).jac, out.middleRows(blk.first_row, blk.rows));
+    scatter(blk, evaluate(blk, q, qd, t), out.middleRows(blk.first_row, blk.rows));
   return out;
 }
 

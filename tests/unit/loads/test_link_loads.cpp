@@ -195,5 +195,58 @@ TEST(LinkLoads, APartBuiltOutOfThePlaneTakesItsLoadsInItsOwnPlane) {
   }
 }
 
+// The double pendulum with its second drive replaced by a belt from the
+// ground's pulley at J1 to link2's at J2, carried by link1 (ratio -2: link2
+// turns back relative to link1 twice as far as link1 turns).
+mech::MultibodyModel belt_pendulum() {
+  mech::MultibodyModel m = double_pendulum();
+  m.motion_drives.pop_back();
+  mech::Transmission belt;
+  belt.name = "T";
+  belt.input = {mech::CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}};
+  belt.output = {mech::CoordinateType::Angle, "link1", "origin", "link2", "origin", {1, 0}};
+  belt.ratio = -2.0;
+  belt.radius_m = 0.03;
+  m.transmissions.push_back(belt);
+  return m;
+}
+
+// A transmission's moments enter the parts of the bodies it joins like a
+// drive's effort: link1 takes the input side's moment (as the input's body_j)
+// at bore_1 and the output side's reaction (as the output's body_i) at
+// bore_2, link2 the output side's moment at bore_1. Reference: d'Alembert
+// equilibrium of each link, 1e-9 as for the joints and drives above; the
+// patterns' combination equals loads_at to 1e-12; without link2's share the
+// link is out of equilibrium (the check sees the missing moment).
+TEST(LinkLoads, TransmissionMomentsKeepEveryLinkInEquilibriumAndSuperpose) {
+  const mech::MultibodyModel model = belt_pendulum();
+  const mech::Results results = mech::run_kinematics(mech::MultibodySystem(model), times(10));
+  ASSERT_EQ(results.frames.front().transmissions.size(), 1u);
+  LinkDefinition link1{"link1", &link_model(), {{"J1", "bore_1"}, {"J2", "bore_2"}}, {}, {{"D1", "bore_1"}}};
+  link1.transmissions = {{"T", TransmissionSide::Input, "bore_1"}, {"T", TransmissionSide::Output, "bore_2"}};
+  LinkDefinition link2{"link2", &link_model(), {{"J2", "bore_1"}}, {{"tip", "bore_2"}}};
+  link2.transmissions = {{"T", TransmissionSide::Output, "bore_1"}};
+  const LinkLoads loads1(link1, model), loads2(link2, model);
+  double worst = 0.0, worst_pattern = 0.0, peak_moment = 0.0;
+  for (const auto& frame : results.frames) {
+    peak_moment = std::max(peak_moment, std::abs(frame.transmissions[0].moment_output_Nm));
+    for (const LinkLoads* loads : {&loads1, &loads2}) {
+      const LinkLoadResult r = loads->loads_at(frame);
+      worst = std::max(worst, r.equilibrium_residual);
+      const Eigen::VectorXd combined = loads->pattern_forces() * loads->coefficients_at(frame).coefficients;
+      worst_pattern = std::max(worst_pattern, (combined - r.forces).cwiseAbs().maxCoeff() / r.forces.cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_GT(peak_moment, 1.0);  // the belt carries link2 (N m): the check is not vacuous
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(worst_pattern, 1e-12);
+  LinkDefinition without = link2;
+  without.transmissions.clear();
+  EXPECT_THROW(LinkLoads(without, model).loads_at(results.frames[5]), Error);
+  LinkDefinition wrong_side = link2;
+  wrong_side.transmissions = {{"T", TransmissionSide::Input, "bore_1"}};  // link2 is not on the input
+  EXPECT_THROW(LinkLoads(wrong_side, model), Error);
+}
+
 }  // namespace
 }  // namespace kinetofem::loads

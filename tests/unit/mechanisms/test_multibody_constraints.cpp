@@ -1,7 +1,10 @@
 // Constraint equations of the planar multibody core (system.hpp): the Jacobian
 // Phi_q, the velocity right-hand side nu and the acceleration right-hand side
-// gamma of every joint type checked against finite differences of Phi itself;
-// point masses (parallel axis); assembly failure and singular positions.
+// gamma of every joint type, drive and transmission checked against finite
+// differences of Phi itself; point masses (parallel axis); assembly failure and
+// singular positions; the checks of a transmission's data.
+#include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -78,6 +81,24 @@ MultibodyModel all_joint_types() {
   disp.coordinate = {CoordinateType::Displacement, "b2", "R", "b1", "P", {0.3, -1.0}};
   disp.law = std::make_shared<Polynomial345Law>(0.3, 1.5);
   m.motion_drives.push_back(disp);
+  // A belt over three bodies (b1 carries it from the ground's pulley to b2's)
+  // and a gear train between two coordinates of four different bodies.
+  Transmission belt;
+  belt.name = "belt";
+  belt.input = {CoordinateType::Angle, "ground", "origin", "b1", "origin", {1, 0}};
+  belt.output = {CoordinateType::Angle, "b1", "origin", "b2", "origin", {1, 0}};
+  belt.ratio = -4.0;
+  belt.radius_m = 0.05;
+  m.transmissions.push_back(belt);
+  Transmission gears;
+  gears.name = "gears";
+  gears.kind = TransmissionKind::Gear;
+  gears.input = {CoordinateType::Angle, "b2", "origin", "b3", "origin", {1, 0}};
+  gears.output = {CoordinateType::Angle, "ground", "origin", "b1", "origin", {1, 0}};
+  gears.ratio = 0.35;
+  gears.reference = 0.2;
+  gears.radius_m = 0.04;
+  m.transmissions.push_back(gears);
   return m;
 }
 
@@ -97,7 +118,7 @@ Trajectory some_trajectory(const MultibodySystem& sys) {
 
 TEST(MultibodyConstraints, JacobianMatchesFiniteDifferences) {
   const MultibodySystem sys(all_joint_types());
-  ASSERT_EQ(sys.n_constraints(), 2 + 2 + 3 + 1 + 1 + 1 + 1);
+  ASSERT_EQ(sys.n_constraints(), 2 + 2 + 3 + 1 + 1 + 1 + 1 + 1 + 1);
   const VectorXd q = some_trajectory(sys).q0;
   const double t = 0.37, h = 1e-7;
   const Eigen::MatrixXd jac = sys.jacobian(q, t);
@@ -185,6 +206,46 @@ TEST(MultibodyConstraints, StretchedLinkageIsASingularPosition) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("singular position at t = 1.5"), std::string::npos) << e.what();
   }
+}
+
+// The row of the belt of all_joint_types at the initial poses: its constant
+// is taken from them (s_out - i s_in), so the row is zero there; its Jacobian
+// on the carrying body b1 sums both sides (-1 as the output's body_i, -i as the
+// input's body_j: -1 - (-4) = 3).
+TEST(MultibodyConstraints, TransmissionRowHoldsAtTheInitialPosesAndSumsTheCarriersColumns) {
+  const MultibodySystem sys(all_joint_types());
+  const ConstraintBlock& belt = sys.block("belt");
+  EXPECT_EQ(belt.kind, ConstraintKind::Transmission);
+  const VectorXd q = sys.initial_coordinates();
+  EXPECT_NEAR(sys.phi(q, 0.0)(belt.first_row), 0.0, 1e-15);
+  // Reference: b1 turns by 0.2, b2 by -0.5 (initial poses): c = (-0.5 - 0.2) - (-4)(0.2 - 0.3) = -1.1.
+  EXPECT_NEAR(belt.reference, -1.1, 1e-15);
+  const Eigen::MatrixXd jac = sys.jacobian(q, 0.0);
+  EXPECT_DOUBLE_EQ(jac(belt.first_row, sys.offset(1) + 2), 3.0);  // b1: -1 - ratio
+  EXPECT_DOUBLE_EQ(jac(belt.first_row, sys.offset(2) + 2), 1.0);  // b2: +1
+  EXPECT_EQ(jac.row(belt.first_row).cwiseAbs().sum(), 4.0);       // nothing else
+}
+
+// Each bad transmission is an Error that names it and says what is wrong.
+TEST(MultibodyConstraints, BadTransmissionsAreErrorsNamingThem) {
+  auto expect_error = [](const std::function<void(Transmission&)>& spoil, const std::string& words) {
+    MultibodyModel m = all_joint_types();
+    spoil(m.transmissions.front());
+    try {
+      const MultibodySystem sys(m);
+      ADD_FAILURE() << "no error for: " << words;
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("transmission 'belt'"), std::string::npos) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+    }
+  };
+  expect_error([](Transmission& t) { t.ratio = 0.0; }, "finite non-zero");
+  expect_error([](Transmission& t) { t.ratio = std::numeric_limits<double>::quiet_NaN(); }, "finite non-zero");
+  expect_error([](Transmission& t) { t.ratio = std::numeric_limits<double>::infinity(); }, "finite non-zero");
+  expect_error([](Transmission& t) { t.radius_m = 0.0; }, "radius must be positive");
+  expect_error([](Transmission& t) { t.output.type = CoordinateType::Displacement; }, "output coordinate must be an angle");
+  expect_error([](Transmission& t) { t.input.body_j = "b9"; }, "names body 'b9'");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 // docs/cases.md): [[body]], [[point]], [[point_mass]], [[joint]] (revolute,
 // prismatic, fixed, chain), [[spring]], [[point_force]], [[motion_drive]]
 // (laws polynomial345, cycloidal, trapezoidal, constant_velocity, csv),
+// [[transmission]] (belts, chains, gear trains between two joint angles),
 // [[force_drive]] (constant, dc_motor, pd_servo), [gravity], [simulation].
 // Lengths in the file are mm, angles deg; inside SI (m, rad).
 //

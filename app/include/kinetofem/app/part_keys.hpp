@@ -4,7 +4,8 @@
 // length unit, placement and mass properties), [[face_set]] (named faces of a
 // CAD file without names, by bounding box), and the face keys of the tables
 // that act on a part: [[joint]] face_i / face_j / load, [[motion_drive]] and
-// [[force_drive]] face_i / face_j, [[point_mass]] face, [[spring]] face_i /
+// [[force_drive]] face_i / face_j, [[transmission]] input.face_i / input.face_j /
+// output.face_i / output.face_j, [[point_mass]] face, [[spring]] face_i /
 // face_j, [[point_force]] face. Every key, unit and default: docs/cases.md.
 #include <vector>
 

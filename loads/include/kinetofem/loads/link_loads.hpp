@@ -18,7 +18,9 @@
 //   * each point mass it carries (gripper, casting) as the force
 //     m (g - a_P) at the mass's point, tied to its mount face by a
 //     distributing coupling;
-//   * each drive's effort (torque) on its shaft face, each spring's force
+//   * each drive's effort (torque) and each transmission's moment (a belt's
+//     or gear train's, mech::Transmission, on the body of either of its two
+//     coordinates) on its shaft face, each spring's force
 //     (tension k (L - L0) + c L', from the frame's body states) and each
 //     constant point force, at their points, through distributing couplings.
 // A joint's reaction, a point mass, a spring end or a point force acts at its
@@ -40,7 +42,7 @@
 // B: the 12 basis fields of the affine body force (fem::RigidBodyMotionLoads);
 // G_j: unit force F_x, F_y, F_z and unit moment M_x, M_y, M_z at the centroid
 // of the j-th distributing coupling, one per distinct face set (a joint, a
-// mass, a drive, a spring or a force on the same face share it). c(t): the
+// mass, a drive, a transmission, a spring or a force on the same face share it). c(t): the
 // body force's 12 coefficients, then per coupling the resultant (force, N;
 // moment about its centroid, N m) of everything that enters through it. So a
 // link is solved for its m patterns once and any output time is the
@@ -113,6 +115,19 @@ struct DriveAttachment {
   std::string face_set;
 };
 
+// A transmission (mech::Transmission) whose moment on this link enters
+// through a face set (the bore of the pulley, sprocket or gear it turns, or of
+// the shaft that carries it), by a distributing coupling, as a drive's effort.
+// A link can be a body of both coordinates (the arm that carries a belt from
+// the frame's pulley to the next link's): one attachment per side.
+enum class TransmissionSide { Input, Output };
+
+struct TransmissionAttachment {
+  std::string transmission;  // name in mech::MultibodyModel::transmissions
+  TransmissionSide side = TransmissionSide::Output;
+  std::string face_set;
+};
+
 // A spring of the multibody model, its end on this link tied to a face set.
 struct SpringAttachment {
   std::string spring;  // name in mech::MultibodyModel::springs
@@ -139,6 +154,8 @@ struct LinkDefinition {
   // loads_at neither checks their equilibrium nor gives the out-of-plane
   // components to the pins.
   bool held_on_foundation = false;
+  // Last, so that the positional initialisers of the fields above still hold.
+  std::vector<TransmissionAttachment> transmissions;
 };
 
 // Mass, centre of mass and inertia (about z) of a mech::Body from an FE
@@ -222,6 +239,13 @@ class LinkLoads {
     bool on_j = true;  // the effort acts on body_j (+), reacts on body_i (-)
     int coupling = -1;
   };
+  struct TransmissionLoad {
+    std::string name;
+    int transmission_index = -1;  // into mech::Frame::transmissions
+    TransmissionSide side = TransmissionSide::Output;
+    bool on_j = true;  // the side's moment acts on its body_j (+), reacts on body_i (-)
+    int coupling = -1;
+  };
   struct Spring {
     std::string name;
     int spring_index = -1;
@@ -253,6 +277,7 @@ class LinkLoads {
   std::vector<Attached> joints_;
   std::vector<Mass> masses_;
   std::vector<Drive> drives_;
+  std::vector<TransmissionLoad> transmissions_;
   std::vector<Spring> springs_;
   std::vector<PointForce> point_forces_;
   std::vector<mech::Spring> model_springs_;

@@ -1,7 +1,8 @@
 #pragma once
 // MultibodyModel — the plain-data description of a planar linkage: bodies with
-// named points, joints, prescribed-motion drives, force drives, springs,
-// point masses, point forces and gravity, all referred to by name. A case reader
+// named points, joints, prescribed-motion drives, constant-ratio transmissions,
+// force drives, springs, point masses, point forces and gravity, all referred
+// to by name. A case reader
 // fills it; MultibodySystem (system.hpp) checks and compiles it.
 //
 // Frames and units (SI throughout):
@@ -109,6 +110,30 @@ struct MotionDrive {
   std::optional<double> initial;  // s_0; left empty, s(q_initial poses) - law(0)
 };
 
+// A constant-ratio transmission between two relative angles (SPEC §4's control
+// transmission mechanism: a belt, chain or gear train that ties one joint angle
+// of a primary chain to another):
+//     s_out = ratio * s_in + c,      s = theta_j - theta_i of each coordinate (rad),
+// i.e. phi_{k+1,k} = i_k phi_{k,k-1} with s_in = phi_{k,k-1}, s_out = phi_{k+1,k}.
+// The sign is that of the general statement of SPEC §4; the source's two-link
+// formula writes phi_21 = -i phi_10, so its i is -ratio here: an open belt from a
+// fixed pulley of radius r_0 to a pulley of radius r_2 on the next link gives
+// ratio = -r_0 / r_2, a crossed belt or one gear pair +r_0 / r_2.
+// An ideal, workless, massless transmission: one constraint row (system.hpp)
+// whose multiplier gives the moment it transmits (results.hpp: TransmissionFrame).
+enum class TransmissionKind { Belt, Gear };
+
+struct Transmission {
+  std::string name;
+  RelativeCoordinate input, output;  // both CoordinateType::Angle
+  double ratio = 1.0;                // i, finite and non-zero
+  std::optional<double> reference;   // c (rad); left empty, s_out - i s_in at the initial poses
+  TransmissionKind kind = TransmissionKind::Belt;
+  // Radius of the output side's pulley (belt, chain) or pitch circle (gear), m:
+  // the belt's effective pull or the tooth force is the output moment / radius.
+  double radius_m = 0.0;
+};
+
 // A motor acting on the relative coordinate s with an effort (torque or force) law:
 //   Constant:  effort = value
 //   DcMotor:   effort = stall * (1 - s_dot / no_load_speed)  (the speed-torque line)
@@ -151,6 +176,7 @@ struct MultibodyModel {
   std::vector<Body> bodies;
   std::vector<Joint> joints;
   std::vector<MotionDrive> motion_drives;
+  std::vector<Transmission> transmissions;
   std::vector<ForceDrive> force_drives;
   std::vector<Spring> springs;
   std::vector<PointForce> point_forces;

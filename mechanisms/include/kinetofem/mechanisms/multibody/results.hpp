@@ -59,12 +59,27 @@ struct ChainFrame {
   double wrap_angle_rad = 0.0;  // sigma*(theta_roller - tau), as in system.hpp
 };
 
+// A transmission (model.hpp) at one output time, from its multiplier lambda.
+// The moments are what the transmission applies to the bodies of each
+// coordinate: on body_j (+), reversed on body_i (-), as a drive's effort.
+struct TransmissionFrame {
+  std::string name;
+  double s_in = 0.0, s_out = 0.0;          // the two relative angles (rad)
+  double s_in_dot = 0.0, s_out_dot = 0.0;  // rad/s
+  double moment_output_Nm = 0.0;  // -lambda: on the output's body_j
+  double moment_input_Nm = 0.0;   // i lambda = -i moment_output: on the input's body_j
+  // moment_output / radius (N): a belt's effective pull (tight minus slack strand)
+  // or the tangential tooth force on the output's pitch circle.
+  double force_N = 0.0;
+};
+
 struct Frame {
   double t = 0.0;
   std::vector<BodyFrame> bodies;   // model order, ground included
   std::vector<JointFrame> joints;  // model joint order
   std::vector<DriveFrame> drives;  // motion drives, then force drives
   std::vector<ChainFrame> chains;
+  std::vector<TransmissionFrame> transmissions;  // model order
   Eigen::VectorXd q, q_dot, q_ddot, lambda;  // solver coordinates (centre-of-mass based), multipliers
   double kinetic_energy_J = 0.0, potential_energy_J = 0.0;
   double work_drives_J = 0.0;   // from t0: all drives (prescribed and force laws)

@@ -39,6 +39,15 @@
 //              displacement: s = u_i.d,  u_i = A_i axis_i,
 //                  gamma = u.d theta_i'^2 - 2 theta_i' n.d' + u.(A_j s_j theta_j'^2 - A_i s_i theta_i'^2) + law''
 //              nu = law'(t).
+//   transmission  two angles, s_in = theta_jin - theta_iin (input) and
+//              s_out = theta_jout - theta_iout (output), up to four bodies:
+//                  Phi = s_out - i s_in - c                    (1 row)
+//              Phi_q: +1 at theta_jout, -1 at theta_iout, -i at theta_jin, +i at
+//              theta_iin (summed where a body is on both sides, as the link that
+//              carries a belt is); nu = 0, gamma = 0 (linear in the angles). The
+//              load -Phi_q^T lambda is a moment -lambda on the output's body_j and
+//              i lambda on the input's body_j, reversed on the body_i's: pure moments
+//              that sum to zero and do no work on the constrained motion.
 // Equations of motion with multipliers lambda:
 //     M q'' + Phi_q^T lambda = Q(q, q', t),
 // so the constraint load on body k is -Phi_q(rows, k)^T lambda: force (world
@@ -60,32 +69,36 @@ struct EffectiveBody {
   Eigen::Vector2d com_body = Eigen::Vector2d::Zero();
 };
 
-enum class ConstraintKind { Joint, Drive };
+enum class ConstraintKind { Joint, Drive, Transmission };
 
-// One block of constraint rows: a joint or a motion drive.
+// One block of constraint rows: a joint, a motion drive or a transmission.
 struct ConstraintBlock {
   std::string name;
   ConstraintKind kind = ConstraintKind::Joint;
   JointType joint = JointType::Revolute;        // kind == Joint
   int first_row = 0;
   int rows = 0;
-  int body_i = -1, body_j = -1;                 // indices into model().bodies
+  int body_i = -1, body_j = -1;                 // indices into model().bodies (transmission: the output's)
+  int input_i = -1, input_j = -1;               // transmission: the input coordinate's bodies
+  double ratio = 0.0;                           // transmission: i
   Eigen::Vector2d s_i, s_j;                     // points relative to the centre of mass, body frame
   Eigen::Vector2d axis_i{1.0, 0.0};             // unit, body_i frame
   CoordinateType coordinate = CoordinateType::Angle;  // drives
-  double reference = 0.0;                       // fixed/prismatic angle, chain length, drive s_0
+  double reference = 0.0;                       // fixed/prismatic angle, chain length, drive s_0, transmission c
   double radius_m = 0.0, sigma = 1.0;           // chain
   const MotionLaw* law = nullptr;               // drives; non-owning: the shared_ptr in model().motion_drives owns it
-  int source = -1;                              // index into joints or motion_drives
+  int source = -1;                              // index into joints, motion_drives or transmissions
   std::vector<bool> length_row;                 // row measures a length (else an angle)
 };
 
 // Values of a constraint block at one state: residual, local Jacobian over the
 // two bodies' coordinates (rows x 6: body i's (x, y, theta), then body j's),
-// and the right-hand sides nu and gamma.
+// and the right-hand sides nu and gamma. A transmission also has the columns
+// of its input coordinate's two bodies (input_i, input_j).
 struct BlockValues {
   Eigen::VectorXd phi, nu, gamma;
-  Eigen::MatrixXd jac;  // rows x 6
+  Eigen::MatrixXd jac;        // rows x 6
+  Eigen::MatrixXd jac_input;  // rows x 6 for a transmission, else empty
 };
 
 class MultibodySystem {
@@ -158,6 +171,9 @@ class MultibodySystem {
   // Scatters a 6-column local block (bodies i, j) into n global columns.
   void scatter(int body_i, int body_j, const Eigen::MatrixXd& local, Eigen::Ref<Eigen::MatrixXd> global) const;
   Eigen::Matrix<double, 6, 1> gather(int body_i, int body_j, const Eigen::VectorXd& v) const;
+  // Scatters a block's local Jacobian (both column blocks of a transmission) into
+  // its rows of the global Jacobian (rows x n).
+  void scatter(const ConstraintBlock& block, const BlockValues& values, Eigen::Ref<Eigen::MatrixXd> rows) const;
 
   // Effort (torque or force) of force drive d at a state.
   double force_drive_effort(int d, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const;
