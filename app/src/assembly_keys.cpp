@@ -174,10 +174,10 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
             c.where("pin[].joint", 0));
     return std::nullopt;
   }
-  require(c.count("transmission") == 0,
-          "{} = true: transmission '{}': the elastic assembly does not model transmissions yet (leave "
-          "assembly.enabled = false for this linkage)",
-          c.where("assembly.enabled"), c.text_value("transmission[].name", 0));
+  if (c.count("transmission") > 0)
+    fail("{} = true: transmission '{}': the elastic assembly does not model transmissions yet (leave "
+         "assembly.enabled = false for this linkage)",
+         c.where("assembly.enabled"), c.text_value("transmission[].name", 0));
   require(!bodies_with_parts.empty(),
           "{} = true, but no body has a [[part]]: the elastic assembly needs at least one FE part",
           c.where("assembly.enabled"));
