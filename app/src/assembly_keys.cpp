@@ -100,8 +100,8 @@ std::optional<structure::AssemblyOptions> read_manipulator_assembly(const CaseFi
 
 void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
   add_common(s, false,
-             "also solve the linkage as one elastic structure held by the ground (needs [[part]]s; revolute, fixed "
-             "and chain joints, angle drives)");
+             "also solve the linkage as one elastic structure held by the ground (needs [[part]]s; revolute, "
+             "prismatic, fixed and chain joints; angle and displacement drives)");
   s.push_back({.path = "joint[].ea_per_strand_n", .type = Type::Number, .unit = "N", .min = 0, .max = kMaxEaN,
                .min_exclusive = true,
                .doc = "chain, elastic assembly: axial stiffness EA of one strand (required when the assembly is on)",
@@ -111,6 +111,22 @@ void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "motion_drive[].stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
                .min_exclusive = true,
                .doc = "angle drive, elastic assembly: torsional stiffness of the drive train; absent: rigid"});
+  s.push_back({.path = "motion_drive[].stiffness_n_per_m", .type = Type::Number, .unit = "N/m", .min = 0,
+               .min_exclusive = true,
+               .doc = "displacement drive, elastic assembly: axial stiffness of the drive train (screw, cylinder, "
+                      "belt); absent: rigid"});
+  s.push_back({.path = "slide", .type = Type::TableArray,
+               .doc = "elastic assembly: the bearing of a prismatic joint's slider on an elastic guide (body_i with a "
+                      "part); joints not listed get the defaults"});
+  s.push_back({.path = "slide[].joint", .type = Type::String, .doc = "the prismatic joint", .required = true});
+  s.push_back({.path = "slide[].contact_length_mm", .type = Type::Number, .unit = "mm", .to_si = units::kMm, .min = 0,
+               .max = 1e5, .min_exclusive = true,
+               .doc = "length of the slider's bearing on the guide: the load spreads over a window this long on the "
+                      "guide's face set; default: the slider's face set's extent along the axis (a slider with a part)"});
+  s.push_back({.path = "slide[].station_spacing_mm", .type = Type::Number, .unit = "mm", .to_si = units::kMm, .min = 0,
+               .max = 1e5, .min_exclusive = true,
+               .doc = "distance between the guide's stations (windows) along the axis, between which the slider's "
+                      "position is interpolated; default: a quarter of the contact length"});
   s.push_back({.path = "assembly_point", .type = Type::TableArray,
                .doc = "points whose elastic displacement, split and compliance the assembly reports (e.g. a gripper point)"});
   s.push_back({.path = "assembly_point[].name", .type = Type::String, .doc = "name (histories assembly.point.<name>.*)", .required = true});
@@ -150,9 +166,35 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
       }
   }
   for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
-    if (c.has("motion_drive[].stiffness_n_m_per_rad", k))
-      require(enabled, "{}: set assembly.enabled = true to use it (the drive's stiffness only enters the elastic assembly)",
-              c.where("motion_drive[].stiffness_n_m_per_rad", k));
+    for (const auto& [key, coordinate] : {std::pair{"motion_drive[].stiffness_n_m_per_rad", "angle"},
+                                         std::pair{"motion_drive[].stiffness_n_per_m", "displacement"}})
+      if (c.has(key, k)) {
+        require(c.text_value("motion_drive[].coordinate", k) == coordinate,
+                "{}: drive '{}' drives {} {}: its stiffness is {}", c.where(key, k), c.text_value("motion_drive[].name", k),
+                c.text_value("motion_drive[].coordinate", k) == "angle" ? "an" : "a",
+                c.text_value("motion_drive[].coordinate", k),
+                coordinate == std::string("angle") ? "stiffness_n_per_m (N/m)" : "stiffness_n_m_per_rad (N*m/rad)");
+        require(enabled, "{}: set assembly.enabled = true to use it (the drive's stiffness only enters the elastic assembly)",
+                c.where(key, k));
+      }
+  // A [[slide]] names a prismatic joint of the linkage, once.
+  for (std::size_t k = 0; k < c.count("slide"); ++k) {
+    const std::string name = c.text_value("slide[].joint", k);
+    const auto joint = std::find_if(model.joints.begin(), model.joints.end(), [&](const mech::Joint& j) { return j.name == name; });
+    if (joint == model.joints.end() || joint->type != mech::JointType::Prismatic) {
+      std::string names;
+      for (const auto& j : model.joints)
+        if (j.type == mech::JointType::Prismatic) names += (names.empty() ? "" : ", ") + j.name;
+      fail("{} = \"{}\": no prismatic joint of that name (prismatic joints: {})", c.where("slide[].joint", k), name,
+           names.empty() ? "none" : names);
+    }
+    require(std::find(bodies_with_parts.begin(), bodies_with_parts.end(), joint->body_i) != bodies_with_parts.end(),
+            "{} = \"{}\": its guide (body_i '{}') has no part: a [[slide]] is for an elastic guide", c.where("slide[].joint", k),
+            name, joint->body_i);
+    for (std::size_t l = 0; l < k; ++l)
+      require(c.text_value("slide[].joint", l) != name, "{} = \"{}\": that joint has a [[slide]] already",
+              c.where("slide[].joint", k), name);
+  }
   // A [[pin]] names a revolute joint of the linkage, once.
   for (std::size_t k = 0; k < c.count("pin"); ++k) {
     const std::string name = c.text_value("pin[].joint", k);
@@ -172,6 +214,8 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
     require(c.count("assembly_point") == 0, "{}: [[assembly_point]] needs assembly.enabled = true", c.where("assembly_point[].name", 0));
     require(c.count("pin") == 0, "{}: [[pin]] needs assembly.enabled = true (a pin is an elastic member of the assembly)",
             c.where("pin[].joint", 0));
+    require(c.count("slide") == 0, "{}: [[slide]] needs assembly.enabled = true (it shapes the elastic assembly's guide)",
+            c.where("slide[].joint", 0));
     return std::nullopt;
   }
   if (c.count("transmission") > 0)
@@ -190,12 +234,6 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
             "(leave assembly.enabled = false for this linkage)",
             c.where("joint[].type", k), c.text_value("joint[].type", k), c.text_value("joint[].name", k),
             mech::joint_type_list([](const mech::JointFacts& f) { return f.assembly_tie != mech::AssemblyTie::None; }));
-  for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
-    require(c.text_value("motion_drive[].coordinate", k) == "angle",
-            "{} = \"{}\": drive '{}': the elastic assembly models angle drives only (leave assembly.enabled = "
-            "false for this linkage)",
-            c.where("motion_drive[].coordinate", k), c.text_value("motion_drive[].coordinate", k),
-            c.text_value("motion_drive[].name", k));
   for (std::size_t k = 0; k < c.count("joint"); ++k)
     require(c.text_value("joint[].load", k) != "contact" || c.text_value("assembly.coupling") != "rigid_bore",
             "{} = \"rigid_bore\": pins in contact need the distributing couplings (rigid_bore presses every pin "
@@ -222,6 +260,21 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
               c.where("motion_drive[].stiffness_n_m_per_rad", k), stiffness);
       o.drives.push_back({c.text_value("motion_drive[].name", k), stiffness});
     }
+  for (std::size_t k = 0; k < c.count("motion_drive"); ++k)
+    if (c.has("motion_drive[].stiffness_n_per_m", k)) {
+      const double stiffness = c.number("motion_drive[].stiffness_n_per_m", k);
+      require(std::isfinite(stiffness), "{} = {}: the drive's stiffness must be a finite number of N/m",
+              c.where("motion_drive[].stiffness_n_per_m", k), stiffness);
+      structure::DriveHold hold{c.text_value("motion_drive[].name", k)};
+      hold.axial_stiffness_n_per_m = stiffness;
+      o.drives.push_back(hold);
+    }
+  for (std::size_t k = 0; k < c.count("slide"); ++k) {
+    structure::SlideOption slide{c.text_value("slide[].joint", k)};
+    if (c.has("slide[].contact_length_mm", k)) slide.contact_length_m = c.number("slide[].contact_length_mm", k);
+    if (c.has("slide[].station_spacing_mm", k)) slide.station_spacing_m = c.number("slide[].station_spacing_mm", k);
+    o.slides.push_back(slide);
+  }
   for (std::size_t k = 0; k < c.count("assembly_point"); ++k) {
     structure::AssemblyPoint p{c.text_value("assembly_point[].name", k), c.text_value("assembly_point[].body", k),
                               c.text_value("assembly_point[].point", k),

@@ -73,7 +73,10 @@ struct AssemblyRecorder {
   std::vector<std::vector<post::FieldMatrix>> point_from;
   std::vector<std::vector<std::string>> point_from_names;
   std::vector<std::string> chain_names, drive_names;
-  std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_moment, drive_twist;
+  // A drive's effort and the change of its coordinate: moment (N m) and twist
+  // (rad) of an angle drive, force (N) and stretch (m) of a displacement one.
+  std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_effort, drive_change;
+  std::vector<bool> drive_displacement;
   std::vector<post::FieldMatrix> pin_bending, pin_shear, pin_deflection;  // per elastic pin (summary.pins order)
   std::vector<post::FieldMatrix> contact_table;    // per pin in contact (summary.contacts order), T x 6
   std::vector<post::FieldMatrix> point_coupling;   // per point: its displacement with couplings (pins in contact)
@@ -296,8 +299,8 @@ struct AssemblyRecorder {
     }
   }
 
-  // The chains' tension (N) and elongation (m), the drives' moment (N m) and
-  // twist (rad) at output time k; the worst relative mismatch of a chain's
+  // The chains' tension (N) and elongation (m), the drives' effort and
+  // coordinate change at output time k; the worst relative mismatch of a chain's
   // tension against the dynamics'.
   void record_chains_and_drives(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
     if (chain_names.empty() && drive_names.empty()) {
@@ -308,8 +311,9 @@ struct AssemblyRecorder {
       }
       for (const auto& d : pose.drives) {
         drive_names.push_back(d.drive);
-        drive_moment.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
-        drive_twist.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        drive_displacement.push_back(d.displacement);
+        drive_effort.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        drive_change.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
       }
     }
     for (size_t c = 0; c < pose.chains.size(); ++c) {
@@ -321,8 +325,9 @@ struct AssemblyRecorder {
                                                   std::abs(pose.chains[c].tension_n - cf.tension_N) / cf.tension_N);
     }
     for (size_t d = 0; d < pose.drives.size(); ++d) {
-      drive_moment[d](Eigen::Index(k), 0) = pose.drives[d].moment_on_j_nm;
-      drive_twist[d](Eigen::Index(k), 0) = pose.drives[d].twist_rad;
+      const DriveResult& dr = pose.drives[d];
+      drive_effort[d](Eigen::Index(k), 0) = dr.displacement ? dr.force_on_j_n : dr.moment_on_j_nm;
+      drive_change[d](Eigen::Index(k), 0) = dr.displacement ? dr.stretch_m : dr.twist_rad;
     }
   }
 
@@ -395,8 +400,14 @@ struct AssemblyRecorder {
       writer.write_history("assembly.chain." + chain_names[c] + ".elongation", "m", chain_elongation[c]);
     }
     for (size_t d = 0; d < drive_names.size(); ++d) {
-      writer.write_history("assembly.drive." + drive_names[d] + ".moment", "N*m", drive_moment[d]);
-      writer.write_history("assembly.drive." + drive_names[d] + ".twist", "rad", drive_twist[d]);
+      const std::string base = "assembly.drive." + drive_names[d];
+      if (drive_displacement[d]) {
+        writer.write_history(base + ".force", "N", drive_effort[d]);
+        writer.write_history(base + ".stretch", "m", drive_change[d]);
+      } else {
+        writer.write_history(base + ".moment", "N*m", drive_effort[d]);
+        writer.write_history(base + ".twist", "rad", drive_change[d]);
+      }
     }
     for (size_t i = 0; i < summary.pins.size(); ++i) {
       const std::string base = post::layout::kAssemblyPinPrefix + summary.pins[i].joint + ".";

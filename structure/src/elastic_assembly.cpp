@@ -149,6 +149,14 @@ struct ElasticAssembly::Impl {
     double ea = 0.0, radius = 0.0, sigma = 1.0;  // chain
     Vector2d hinge = Vector2d::Zero();           // chain: hinge point in the ground's frame
     int pin = -1;                                // revolute with bores at different z: its elastic pin
+    // Slide (prismatic): the axis and the line's point on body_i (body_i
+    // frame). An elastic guide has no if_i: its stations (interfaces of the
+    // windows of its face set, at station_s along the axis from the line's
+    // point, m) take the slider where it sits.
+    Vector2d axis = Vector2d::UnitX(), line_point = Vector2d::Zero();
+    std::vector<int> stations;
+    std::vector<double> station_s;
+    double contact_length = 0.0;
   };
   // The elastic pin of a revolute joint (structure/pin_member.hpp). A side on
   // the rigid ground (no interface) is held at the joint point, z = 0.
@@ -159,7 +167,9 @@ struct ElasticAssembly::Impl {
   };
   struct DriveData {
     int drive = -1, body_i = -1, body_j = -1, if_i = -1, if_j = -1;
-    double k = kRigid;
+    double k = kRigid;  // N m/rad (angle) or N/m (displacement)
+    bool displacement = false;
+    Vector2d axis = Vector2d::UnitX(), point_i = Vector2d::Zero(), point_j = Vector2d::Zero();  // displacement
   };
   struct PointData {
     int body = -1, iface = -1;
@@ -218,11 +228,27 @@ struct ElasticAssembly::Impl {
   // A chain joint's spring data (EA, roller, hinge on the ground) and the
   // interface of its roller.
   void tie_chain(JointData& jd, const mech::Joint& joint, const std::string& who);
+  // A prismatic joint's slider interface and its guide side: the joint point
+  // of a rigid guide, or the stations of an elastic one.
+  void tie_slide(JointData& jd, const mech::Joint& joint, const std::string& who);
+  // The stations of an elastic guide: its face set cut into windows one
+  // contact length long, each an interface.
+  void add_guide_stations(JointData& jd, const mech::Joint& joint, const std::string& who);
+  // Where the slider sits on an elastic guide in a pose: the two stations
+  // that bracket it and the weight of the second; outside them: Error.
+  struct Bracket {
+    int a = -1, b = -1;
+    double weight_b = 0.0;
+  };
+  Bracket slide_bracket(const JointData& jd, const mech::Frame& frame, const Pose& pose) const;
+  // Every SlideOption must name a prismatic joint with an elastic guide.
+  void check_slide_options() const;
   // Adds motion drive d with the interfaces of its two sides.
   void add_drive(size_t d);
-  // The interface of a motion drive on body (-1 on the ground), at the
-  // centroid of the face set its part names.
-  int add_drive_side(int body, const std::string& drive);
+  // The interface of a motion drive on body (-1 on the ground): at the
+  // centroid of the face set its part names (an angle drive), or at `point`
+  // with the face set's centroid z (a displacement drive).
+  int add_drive_side(int body, const std::string& drive, const Vector2d& point, bool centroid_reference);
   // Adds a tracked point with its interface.
   void add_point(const AssemblyPoint& tp);
   // The bores whose pins are in contact (the parts' joint attachments), after
@@ -401,6 +427,11 @@ struct ElasticAssembly::Impl {
     double max_compliance = 0.0;        // largest translational compliance of a spring member, m/N
   };
   PoseMembers members_of(const mech::Frame& frame, const Pose& pose) const;
+  // A drive's coordinate change by the interfaces' motion u (6M, world): an
+  // angle drive's twist rz_j - rz_i; a displacement drive's
+  // ds = t . (u_j - u_i) + (t x d) . rot_i (t its axis in world, d = P_j -
+  // P_i: the axis turns with body_i's side).
+  Eigen::RowVectorXd drive_row(const DriveData& dd, const Pose& pose) const;
   const PartData& part_of(const std::string& body) const {
     for (const auto& p : parts)
       if (p->body == body) return *p;
@@ -482,8 +513,8 @@ struct ElasticAssembly::Impl {
   // Joint j's loads on both ends from the interface loads of a held joint;
   // the ground's side carries the reaction of the other.
   JointLoad held_joint_load(JointLoad jl, const JointData& jd, const Pose& pose, const PoseUnknowns& solved) const;
-  // The twist and moment of every drive.
-  void add_drive_results(PoseSolution& out, const PoseUnknowns& solved) const;
+  // The twist and moment (angle) or stretch and force (displacement) of every drive.
+  void add_drive_results(PoseSolution& out, const Pose& pose, const PoseUnknowns& solved) const;
   // The end motions (u_i, theta_i, u_j, theta_j) of an elastic pin; a side
   // on the rigid ground: zero.
   static Vector12d pin_motion(const PoseMembers::PinPose& pp, const PoseUnknowns& solved) {
@@ -561,6 +592,7 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   check_member_options();
   for (size_t j = 0; j < model.joints.size(); ++j) add_joint(j);
   check_pin_options();
+  check_slide_options();
   for (size_t d = 0; d < model.motion_drives.size(); ++d) add_drive(d);
   for (const AssemblyPoint& tp : options.points) add_point(tp);
   find_contact_bores();
@@ -654,6 +686,14 @@ void ElasticAssembly::Impl::check_member_options() const {
     require(d.torsional_stiffness_nm_per_rad >= 0 && !std::isnan(d.torsional_stiffness_nm_per_rad),
             "elastic assembly: drive '{}': torsional stiffness {} N m/rad must be >= 0 (kRigid: held rigidly)", d.drive,
             d.torsional_stiffness_nm_per_rad);
+    require(d.axial_stiffness_n_per_m >= 0 && !std::isnan(d.axial_stiffness_n_per_m),
+            "elastic assembly: drive '{}': axial stiffness {} N/m must be >= 0 (kRigid: held rigidly)", d.drive,
+            d.axial_stiffness_n_per_m);
+    const bool angle = it->coordinate.type == mech::CoordinateType::Angle;
+    require(angle ? std::isinf(d.axial_stiffness_n_per_m) : std::isinf(d.torsional_stiffness_nm_per_rad),
+            "elastic assembly: drive '{}' drives {}: it has {} stiffness, not {}", d.drive,
+            angle ? "an angle" : "a displacement", angle ? "a torsional" : "an axial",
+            angle ? "an axial one (N/m)" : "a torsional one (N m/rad)");
   }
 }
 
@@ -672,6 +712,8 @@ void ElasticAssembly::Impl::add_joint(size_t j) {
           mech::joint_facts(joint.type).name);
   if (jd.tie == mech::AssemblyTie::ChainSpring) {
     tie_chain(jd, joint, who);
+  } else if (jd.tie == mech::AssemblyTie::Slide) {
+    tie_slide(jd, joint, who);
   } else {
     // A side on the ground is held in space, or on the frame's bore when the
     // ground has a part.
@@ -800,21 +842,165 @@ void ElasticAssembly::Impl::tie_chain(JointData& jd, const mech::Joint& joint, c
 
 void ElasticAssembly::Impl::add_drive(size_t d) {
   const mech::MotionDrive& drive = model.motion_drives[d];
-  require(drive.coordinate.type == mech::CoordinateType::Angle,
-          "elastic assembly: motion drive '{}' drives a displacement; only angle drives are modelled", drive.name);
   DriveData dd;
   dd.drive = int(d);
   const std::string who = fmt::format("drive '{}'", drive.name);
   dd.body_i = body_index(drive.coordinate.body_i, who);
   dd.body_j = body_index(drive.coordinate.body_j, who);
+  dd.displacement = drive.coordinate.type == mech::CoordinateType::Displacement;
   for (const auto& h : options.drives)
-    if (h.drive == drive.name) dd.k = h.torsional_stiffness_nm_per_rad;
-  dd.if_i = add_drive_side(dd.body_i, drive.name);
-  dd.if_j = add_drive_side(dd.body_j, drive.name);
+    if (h.drive == drive.name) dd.k = dd.displacement ? h.axial_stiffness_n_per_m : h.torsional_stiffness_nm_per_rad;
+  if (dd.displacement) {
+    const double length = drive.coordinate.axis_i.norm();
+    require(length > 0 && std::isfinite(length), "elastic assembly: {}: its axis has zero length", who);
+    dd.axis = drive.coordinate.axis_i / length;
+    dd.point_i = named_point(dd.body_i, drive.coordinate.point_i, who);
+    dd.point_j = named_point(dd.body_j, drive.coordinate.point_j, who);
+  }
+  dd.if_i = add_drive_side(dd.body_i, drive.name, dd.point_i, !dd.displacement);
+  dd.if_j = add_drive_side(dd.body_j, drive.name, dd.point_j, !dd.displacement);
   drives.push_back(dd);
 }
 
-int ElasticAssembly::Impl::add_drive_side(int body, const std::string& drive) {
+void ElasticAssembly::Impl::tie_slide(JointData& jd, const mech::Joint& joint, const std::string& who) {
+  const double length = joint.axis_i.norm();
+  require(length > 0 && std::isfinite(length), "elastic assembly: {}: its axis has zero length", who);
+  jd.axis = joint.axis_i / length;
+  jd.line_point = named_point(jd.body_i, joint.point_i, who);
+  require(!rigid_ground(jd.body_j), "elastic assembly: {}: its slider (body_j '{}') is the ground", who, joint.body_j);
+  jd.if_j = add_interface(jd.body_j, Kind::Joint, joint.name, face_set_of_joint(jd.body_j, joint.name),
+                          named_point(jd.body_j, joint.point_j, who), false);
+  if (rigid_ground(jd.body_i)) return;
+  if (part_of_body[size_t(jd.body_i)] < 0) {  // a rigid guide: the joint point on its line
+    jd.if_i = add_interface(jd.body_i, Kind::Joint, joint.name, "", jd.line_point, false);
+    return;
+  }
+  add_guide_stations(jd, joint, who);
+}
+
+void ElasticAssembly::Impl::add_guide_stations(JointData& jd, const mech::Joint& joint, const std::string& who) {
+  PartData& guide = *parts[size_t(part_of_body[size_t(jd.body_i)])];
+  const std::string face_set = face_set_of_joint(jd.body_i, joint.name);
+  fem::Mesh& mesh = guide.supported.mesh;
+  std::vector<fem::FaceBlock> faces;
+  try {
+    faces = mesh.face_set(face_set);
+  } catch (const Error& e) {
+    fail("{}: {}: the guide's face set: {}", guide.label, who, e.what());
+  }
+  auto along = [&](fem::Index n) { return (mesh.nodes.row(n).head<2>().transpose() - jd.line_point).dot(jd.axis); };
+  const std::vector<fem::Index> nodes = fem::nodes_of_faces(faces);
+  require(!nodes.empty(), "{}: {}: the guide's face set '{}' is empty", guide.label, who, face_set);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const fem::Index n : nodes) lo = std::min(lo, along(n)), hi = std::max(hi, along(n));
+  const auto option = std::find_if(options.slides.begin(), options.slides.end(),
+                                   [&](const SlideOption& o) { return o.joint == joint.name; });
+  double contact = option != options.slides.end() ? option->contact_length_m : 0.0;
+  if (!(contact > 0)) {
+    // The slider's own bearing: its face set's extent along the axis (the
+    // axis turned into the slider's frame by the joint's relative angle).
+    const int slider = part_of_body[size_t(jd.body_j)];
+    require(slider >= 0,
+            "elastic assembly: {}: its guide (body '{}') is elastic and its slider (body '{}') has no part to measure "
+            "the bearing on: give the contact length ([[slide]] contact_length_mm)",
+            who, joint.body_i, joint.body_j);
+    const double relative = joint.reference.value_or(model.bodies[size_t(jd.body_j)].pose.z() -
+                                                     model.bodies[size_t(jd.body_i)].pose.z());
+    const Vector2d axis_j = Eigen::Rotation2Dd(-relative) * jd.axis;
+    const PartData& part = *parts[size_t(slider)];
+    const std::vector<fem::Index> on_slider =
+        fem::nodes_of_faces(part.supported.mesh.face_set(face_set_of_joint(jd.body_j, joint.name)));
+    double a = std::numeric_limits<double>::infinity(), b = -a;
+    for (const fem::Index n : on_slider) {
+      const double x = part.supported.mesh.nodes.row(n).head<2>().dot(axis_j);
+      a = std::min(a, x), b = std::max(b, x);
+    }
+    contact = b - a;
+    require(contact > 0, "elastic assembly: {}: the slider's face set has no extent along the axis", who);
+  }
+  require(std::isfinite(contact), "elastic assembly: {}: contact length {} m is not finite", who, contact);
+  require(hi - lo >= contact * (1 - 1e-9),
+          "elastic assembly: {}: the guide's face set '{}' on body '{}' is {:.3f} mm long along the axis, shorter than "
+          "the slider's contact length {:.3f} mm",
+          who, face_set, joint.body_i, (hi - lo) / units::kMm, contact / units::kMm);
+  jd.contact_length = contact;
+  const double spacing = option != options.slides.end() && option->station_spacing_m > 0 ? option->station_spacing_m
+                                                                                         : 0.25 * contact;
+  const double first = lo + 0.5 * contact, last = hi - 0.5 * contact;
+  const int count = std::max(1, int(std::ceil((last - first) / spacing - 1e-9)) + 1);
+  const double slack = 1e-9 * contact;
+  for (int k = 0; k < count; ++k) {
+    const double s = count == 1 ? 0.5 * (first + last) : first + (last - first) * k / (count - 1);
+    // The window: the faces whose nodes all lie within half a contact length
+    // of the station.
+    std::vector<fem::FaceBlock> window;
+    for (const fem::FaceBlock& block : faces) {
+      fem::FaceBlock kept{block.type, {}};
+      for (fem::Index f = 0; f < block.size(); ++f) {
+        const auto face = block.face(f);
+        if (std::all_of(face.begin(), face.end(), [&](fem::Index n) { return std::abs(along(n) - s) <= 0.5 * contact + slack; }))
+          kept.connectivity.insert(kept.connectivity.end(), face.begin(), face.end());
+      }
+      if (kept.size() > 0) window.push_back(std::move(kept));
+    }
+    const std::string name = fmt::format("{}@{:.6g}mm", face_set, s / units::kMm);
+    require(!window.empty(),
+            "elastic assembly: {}: the guide's window at {:.3f} mm holds no whole face of '{}' (faces longer than the "
+            "contact length {:.3f} mm: mesh the guide finer or give a longer contact length)",
+            who, s / units::kMm, face_set, contact / units::kMm);
+    mesh.face_sets[name] = std::move(window);
+    jd.stations.push_back(add_interface(jd.body_i, Kind::Joint, joint.name, name, jd.line_point + s * jd.axis, false));
+    jd.station_s.push_back(s);
+  }
+}
+
+ElasticAssembly::Impl::Bracket ElasticAssembly::Impl::slide_bracket(const JointData& jd, const mech::Frame& frame,
+                                                                   const Pose& pose) const {
+  const Vector3d local = pose.R[size_t(jd.body_i)].transpose() * (pose.P[size_t(jd.if_j)] - pose.origin[size_t(jd.body_i)]);
+  const double s = (local.head<2>() - jd.line_point).dot(jd.axis);
+  const double slack = 1e-9 * jd.contact_length;
+  const std::vector<double>& at = jd.station_s;
+  const mech::Joint& joint = model.joints[size_t(jd.joint)];
+  require(s >= at.front() - slack && s <= at.back() + slack,
+          "elastic assembly at t = {:.6g} s: joint '{}': the slider sits at {:.3f} mm along its guide (body '{}'), "
+          "beyond the guide: its {:.3f} mm contact length fits between {:.3f} and {:.3f} mm",
+          frame.t, joint.name, s / units::kMm, joint.body_i, jd.contact_length / units::kMm,
+          (at.front() - 0.5 * jd.contact_length) / units::kMm, (at.back() + 0.5 * jd.contact_length) / units::kMm);
+  Bracket bracket;
+  if (at.size() == 1) {
+    bracket.a = bracket.b = jd.stations.front();
+    return bracket;
+  }
+  const size_t k = std::min<size_t>(size_t(std::upper_bound(at.begin(), at.end(), s) - at.begin()), at.size() - 1);
+  const size_t a = k == 0 ? 0 : k - 1;
+  bracket.a = jd.stations[a];
+  bracket.b = jd.stations[a + 1];
+  bracket.weight_b = std::clamp((s - at[a]) / (at[a + 1] - at[a]), 0.0, 1.0);
+  return bracket;
+}
+
+void ElasticAssembly::Impl::check_slide_options() const {
+  for (const SlideOption& o : options.slides) {
+    const auto joint = std::find_if(joints.begin(), joints.end(),
+                                    [&](const JointData& jd) { return model.joints[size_t(jd.joint)].name == o.joint; });
+    require(joint != joints.end() && joint->tie == mech::AssemblyTie::Slide,
+            "elastic assembly: a slide option is given for joint '{}', which is not a prismatic joint of the mechanism "
+            "'{}'",
+            o.joint, model.name);
+    require(!joint->stations.empty(),
+            "elastic assembly: a slide option is given for joint '{}', whose guide (body '{}') is rigid: the contact "
+            "length only spreads the slider's load on an elastic guide",
+            o.joint, body_name(joint->body_i));
+    require(o.contact_length_m >= 0 && std::isfinite(o.contact_length_m) && o.station_spacing_m >= 0 &&
+                std::isfinite(o.station_spacing_m),
+            "elastic assembly: the slide option of joint '{}': contact length {} m and station spacing {} m must be "
+            ">= 0 and finite",
+            o.joint, o.contact_length_m, o.station_spacing_m);
+  }
+}
+
+int ElasticAssembly::Impl::add_drive_side(int body, const std::string& drive, const Vector2d& point,
+                                          bool centroid_reference) {
   if (rigid_ground(body)) return -1;
   std::string face_set;
   const int p = part_of_body[size_t(body)];
@@ -826,7 +1012,7 @@ int ElasticAssembly::Impl::add_drive_side(int body, const std::string& drive) {
             "(LinkDefinition::drives)",
             parts[size_t(p)]->label, drive, body_name(body));
   }
-  return add_interface(body, Kind::Drive, drive, face_set, Vector2d::Zero(), true);
+  return add_interface(body, Kind::Drive, drive, face_set, point, centroid_reference);
 }
 
 void ElasticAssembly::Impl::add_point(const AssemblyPoint& tp) {
@@ -1327,6 +1513,38 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
       spring_name.push_back("chain." + joint.name);
       continue;
     }
+    if (jd.tie == mech::AssemblyTie::Slide) {
+      // Rows in the slide's axes: across it in the plane (n), along z, the
+      // three rotations; the slider's motion at its point minus the guide's
+      // carried rigidly to that point (an elastic guide: its two bracketing
+      // stations, weighted).
+      const Vector3d t = pose.R[size_t(jd.body_i)] * lift(jd.axis);
+      const Vector3d n = Vector3d::UnitZ().cross(t);
+      std::vector<std::pair<int, double>> guide;  // interfaces and weights
+      if (!jd.stations.empty()) {
+        const Bracket bracket = slide_bracket(jd, frame, pose);
+        guide.push_back({bracket.a, 1.0 - bracket.weight_b});
+        if (bracket.b != bracket.a) guide.push_back({bracket.b, bracket.weight_b});
+      } else if (jd.if_i >= 0) {
+        guide.push_back({jd.if_i, 1.0});
+      }
+      const std::pair<int, Vector3d> held[5] = {{0, n}, {2, Vector3d::UnitZ()}, {3, Vector3d::UnitX()},
+                                                {4, Vector3d::UnitY()}, {5, Vector3d::UnitZ()}};
+      const char* across[5] = {"across the slide", "z", "rx", "ry", "rz"};
+      for (int c = 0; c < 5; ++c) {
+        Eigen::Matrix<double, 1, 6> e = Eigen::Matrix<double, 1, 6>::Zero();
+        if (held[c].first < 3)
+          e.head<3>() = held[c].second.transpose();
+        else
+          e.tail<3>() = held[c].second.transpose();
+        Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(6 * M);
+        r.segment<6>(6 * jd.if_j) += e;
+        for (const auto& [k, w] : guide)
+          if (w != 0.0) r.segment<6>(6 * k) -= w * e * transfer(pose.P[size_t(jd.if_j)] - pose.P[size_t(k)]);
+        add_row(r, held[c].first, fmt::format("joint '{}' ({})", joint.name, across[c]));
+      }
+      continue;
+    }
     const int held = jd.held;
     Matrix6d T = Matrix6d::Identity();
     if (jd.if_i >= 0 && jd.if_j >= 0) T = transfer(pose.P[size_t(jd.if_j)] - pose.P[size_t(jd.if_i)]);
@@ -1361,20 +1579,38 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
   }
   for (const DriveData& dd : drives) {
     const std::string& name = model.motion_drives[size_t(dd.drive)].name;
-    Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(6 * M);
-    if (dd.if_j >= 0) g(6 * dd.if_j + 5) += 1.0;
-    if (dd.if_i >= 0) g(6 * dd.if_i + 5) -= 1.0;
+    const Eigen::RowVectorXd g = drive_row(dd, pose);
     if (std::isinf(dd.k)) {
-      add_row(g, 5, fmt::format("drive '{}'", name));
+      add_row(g, dd.displacement ? 0 : 5, fmt::format("drive '{}'", name));
     } else {
       S += dd.k * g.transpose() * g;
-      if (dd.k > 0) max_compliance = std::max(max_compliance, Lr * Lr / dd.k);
+      if (dd.k > 0) max_compliance = std::max(max_compliance, dd.displacement ? 1.0 / dd.k : Lr * Lr / dd.k);
       spring_g.push_back(g);
       spring_k.push_back(dd.k);
       spring_name.push_back("drive." + name);
     }
   }
   return out;
+}
+
+Eigen::RowVectorXd ElasticAssembly::Impl::drive_row(const DriveData& dd, const Pose& pose) const {
+  Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(6 * Eigen::Index(interfaces.size()));
+  if (!dd.displacement) {
+    if (dd.if_j >= 0) g(6 * dd.if_j + 5) += 1.0;
+    if (dd.if_i >= 0) g(6 * dd.if_i + 5) -= 1.0;
+    return g;
+  }
+  auto world = [&](int k, int body, const Vector2d& point) {
+    return k >= 0 ? pose.P[size_t(k)] : Vector3d(pose.origin[size_t(body)] + pose.R[size_t(body)] * lift(point));
+  };
+  const Vector3d t = pose.R[size_t(dd.body_i)] * lift(dd.axis);
+  const Vector3d d = world(dd.if_j, dd.body_j, dd.point_j) - world(dd.if_i, dd.body_i, dd.point_i);
+  if (dd.if_j >= 0) g.segment<3>(6 * dd.if_j) += t.transpose();
+  if (dd.if_i >= 0) {
+    g.segment<3>(6 * dd.if_i) -= t.transpose();
+    g.segment<3>(6 * dd.if_i + 3) += t.cross(d).transpose();
+  }
+  return g;
 }
 
 namespace {
@@ -1634,14 +1870,28 @@ JointLoad ElasticAssembly::Impl::held_joint_load(JointLoad jl, const JointData& 
   return jl;
 }
 
-void ElasticAssembly::Impl::add_drive_results(PoseSolution& out, const PoseUnknowns& solved) const {
+void ElasticAssembly::Impl::add_drive_results(PoseSolution& out, const Pose& pose, const PoseUnknowns& solved) const {
   for (const DriveData& dd : drives) {
     DriveResult dr;
     dr.drive = model.motion_drives[size_t(dd.drive)].name;
     dr.rigid = std::isinf(dd.k);
-    dr.stiffness_nm_per_rad = dd.k;
-    dr.twist_rad = solved.u_of(dd.if_j)(5) - solved.u_of(dd.if_i)(5);
-    dr.moment_on_j_nm = dd.if_j >= 0 ? solved.lambda_of(dd.if_j)(5) : -solved.lambda_of(dd.if_i)(5);
+    if (dd.displacement) {
+      // Its interfaces carry only the drive's force along the axis (and, on
+      // body_i's side, the moment of the axis turning): their loads are g^T
+      // times the force.
+      const Eigen::RowVectorXd g = drive_row(dd, pose);
+      Eigen::VectorXd u(g.size());
+      for (Eigen::Index k = 0; k < g.size() / 6; ++k) u.segment<6>(6 * k) = solved.u_of(int(k));
+      dr.displacement = true;
+      dr.stiffness_n_per_m = dd.k;
+      dr.stretch_m = g.dot(u);
+      const Vector3d t = pose.R[size_t(dd.body_i)] * lift(dd.axis);
+      dr.force_on_j_n = dd.if_j >= 0 ? t.dot(solved.lambda_of(dd.if_j).head<3>()) : -t.dot(solved.lambda_of(dd.if_i).head<3>());
+    } else {
+      dr.stiffness_nm_per_rad = dd.k;
+      dr.twist_rad = solved.u_of(dd.if_j)(5) - solved.u_of(dd.if_i)(5);
+      dr.moment_on_j_nm = dd.if_j >= 0 ? solved.lambda_of(dd.if_j)(5) : -solved.lambda_of(dd.if_i)(5);
+    }
     out.drives.push_back(dr);
   }
 }
@@ -1772,7 +2022,7 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
   out.relative_residual = solved.residual;
   add_body_motions(out, solved);
   add_joint_loads(out, frame, pose, members, solved, scales.P);
-  add_drive_results(out, solved);
+  add_drive_results(out, pose, solved);
   add_pin_results(out, members, solved);
   {
     // Elastic pins carry the load systems of the rigid tie they replace.
@@ -1799,7 +2049,6 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
 void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, const Pose& pose,
                                                     const Eigen::MatrixXd& kernel, const Eigen::VectorXd& unscale,
                                                     int rank, int n, const std::vector<std::string>& row_owner) const {
-  (void)pose;
   const int M = int(interfaces.size()), B = moving_count;
   const int ou = 0, ol = 6 * M, oa = 12 * M, om = 12 * M + 6 * B;
   const double Lr = length_scale;
@@ -1833,11 +2082,24 @@ void ElasticAssembly::Impl::explain_rank_deficiency(const mech::Frame& frame, co
                               fmt::format("the rotation about z at joint '{}' (between '{}' and '{}'{})", joint.name,
                                           joint.body_i, joint.body_j, torque_only)});
       }
+      auto translation = [&](int k) { return k >= 0 ? Vector3d(x.segment<3>(ou + 6 * k)) : Vector3d::Zero(); };
+      for (const JointData& jd : joints) {
+        if (jd.tie != mech::AssemblyTie::Slide) continue;  // the slide: free unless a drive holds it
+        const Vector3d t = pose.R[size_t(jd.body_i)] * lift(jd.axis);
+        const int guide = !jd.stations.empty() ? jd.stations.front() : jd.if_i;
+        const mech::Joint& joint = model.joints[size_t(jd.joint)];
+        candidates.push_back({std::abs(t.dot(translation(jd.if_j) - translation(guide))),
+                              fmt::format("the slide along the axis of prismatic joint '{}' (between '{}' and '{}'; "
+                                          "no displacement drive holds it)",
+                                          joint.name, joint.body_i, joint.body_j)});
+      }
       for (const DriveData& dd : drives)
         if (dd.k == 0.0)
           candidates.push_back(
-              {std::abs(rz(dd.if_j) - rz(dd.if_i)) * Lr,
-               fmt::format("drive '{}' (zero torsional stiffness)", model.motion_drives[size_t(dd.drive)].name)});
+              {dd.displacement ? std::abs(drive_row(dd, pose).dot(x.segment(ou, 6 * M)))
+                               : std::abs(rz(dd.if_j) - rz(dd.if_i)) * Lr,
+               fmt::format("drive '{}' (zero {} stiffness)", model.motion_drives[size_t(dd.drive)].name,
+                           dd.displacement ? "axial" : "torsional")});
       double body_motion = 0.0;
       std::string body_named;
       for (size_t b = 0; b < model.bodies.size(); ++b) {

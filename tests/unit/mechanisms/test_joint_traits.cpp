@@ -25,6 +25,7 @@ TEST(JointTraits, EveryTypeHasFactsAndItsNameRoundTrips) {
     EXPECT_LE(f.rows, int(f.length_row.size()));
     switch (f.assembly_tie) {
       case AssemblyTie::Rigid: EXPECT_TRUE(f.assembly_held == 5 || f.assembly_held == 6) << f.name; break;
+      case AssemblyTie::Slide: EXPECT_EQ(f.assembly_held, 5) << f.name; break;
       case AssemblyTie::None:
       case AssemblyTie::ChainSpring: EXPECT_EQ(f.assembly_held, 0) << f.name; break;
     }
@@ -38,7 +39,7 @@ TEST(JointTraits, EveryTypeHasFactsAndItsNameRoundTrips) {
 TEST(JointTraits, NamesAndListsForTheCaseFile) {
   EXPECT_EQ(joint_type_names([](const JointFacts&) { return true; }).size(), all_joint_types.size());
   EXPECT_EQ(joint_type_list([](const JointFacts& f) { return f.assembly_tie != AssemblyTie::None; }),
-            "revolute, fixed and chain");
+            "revolute, prismatic, fixed and chain");
   EXPECT_EQ(joint_type_list([](const JointFacts& f) { return f.has_roller; }), "chain");
   EXPECT_EQ(joint_type_list([](const JointFacts& f) { return f.reference == JointReference::Angle; }),
             "prismatic and fixed");

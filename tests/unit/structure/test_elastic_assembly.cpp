@@ -285,8 +285,17 @@ TEST(ElasticAssembly, UnsupportedJointsAndBadOptionsAreErrors) {
   const Arm a = arm();
   mech::MultibodyModel model = a.model;
   model.joints[1].type = mech::JointType::Prismatic;
-  EXPECT_TRUE(contains(error_of([&] { ElasticAssembly({}, model); }), "joint 'J2' is prismatic"));
+  model.joints[1].axis_i = Eigen::Vector2d::Zero();
+  EXPECT_TRUE(contains(error_of([&] { ElasticAssembly({}, model); }), "prismatic axis is zero"));
   AssemblyOptions o;
+  o.slides = {{"J1", 0.1, 0.0}};
+  EXPECT_TRUE(contains(error_of([&] { ElasticAssembly(a.parts, a.model, o); }), "not a prismatic joint"));
+  o = {};
+  DriveHold axial{"d2"};
+  axial.axial_stiffness_n_per_m = 1e6;
+  o.drives = {axial};
+  EXPECT_TRUE(contains(error_of([&] { ElasticAssembly(a.parts, a.model, o); }), "drive 'd2' drives an angle"));
+  o = {};
   o.drives = {{"nope", 1.0}};
   EXPECT_TRUE(contains(error_of([&] { ElasticAssembly(a.parts, a.model, o); }), "motion drive 'nope'"));
   o = {};

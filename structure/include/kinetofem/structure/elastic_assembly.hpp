@@ -33,10 +33,26 @@
 //     z; the rigid ground's side at z = 0): the pin is an elastic member
 //     instead, a Timoshenko beam from one reference point to the other with
 //     its twist released (structure/pin_member.hpp; PinOption), a spring of S.
-//     Fixed joint: all six held. Prismatic joints are not modelled (Error).
+//     Fixed joint: all six held.
+//   * Prismatic joint (a slider in its guide, mech::AssemblyTie::Slide):
+//     the slider's interface (body_j: the joint point, or its face set's
+//     coupling) follows the guide carried rigidly across in the translations
+//     across the slide (in the plane and along z) and the three rotations;
+//     the translation along the slide axis (axis_i turned into world) is
+//     free, held by a displacement drive on it if any. On the rigid ground or
+//     a rigid guide the guide side is the joint point. On an elastic guide
+//     (body_i with a part) the guide side is the guide's face set where the
+//     slider sits: the face set is cut into windows one contact length long
+//     (SlideOption) centred on stations along the axis, each window an
+//     interface, and in a pose the slider is tied to the two stations that
+//     bracket its position, weighted linearly (a slide outside the stations,
+//     beyond the guide, is an Error naming the time).
 //   * Motion drive on an angle (theta_j - theta_i): holds the relative
 //     rotation about z of its interfaces (the part's DriveAttachment face set)
-//     rigidly (default) or through a torsional stiffness k_d (N m/rad).
+//     rigidly (default) or through a torsional stiffness k_d (N m/rad). On a
+//     displacement (s = u_i . (r_Pj - r_Pi), a slider's drive): holds s at
+//     its interfaces (the coordinate's points) rigidly or through an axial
+//     stiffness k_s (N/m), the drive train's.
 //   * Chain (mech::JointType::Chain, hinge on the ground): a tension-only
 //     axial member from the hinge to its tangent point T on the roller
 //     (mech::chain_tangent), k = EA / free length; it acts on the roller's
@@ -117,10 +133,25 @@ struct ChainMember {
   double axial_stiffness_n = 0.0;  // EA, N (> 0); k = EA / free length in the pose
 };
 
-// How a motion drive holds its angle (drives not listed: rigidly).
+// How a motion drive holds its coordinate (drives not listed: rigidly). The
+// stiffness of the other coordinate type than the drive's is an Error.
 struct DriveHold {
   std::string drive;                               // motion drive name
-  double torsional_stiffness_nm_per_rad = kRigid;  // >= 0; kRigid: a constraint
+  double torsional_stiffness_nm_per_rad = kRigid;  // angle drive: >= 0; kRigid: a constraint
+  double axial_stiffness_n_per_m = kRigid;         // displacement drive: >= 0; kRigid: a constraint
+};
+
+// The guide of a prismatic joint whose body_i has a part (an elastic
+// guide); joints not listed take the defaults. Naming a joint that is not
+// prismatic, or whose guide is rigid, is an Error.
+struct SlideOption {
+  std::string joint;
+  // Length of the slider's bearing on the guide (m): the load spreads over a
+  // window this long on the guide's face set. 0: the extent along the axis
+  // of the slider's face set (a slider with a part), else required.
+  double contact_length_m = 0.0;
+  // Distance between the stations (m); 0: a quarter of the contact length.
+  double station_spacing_m = 0.0;
 };
 
 // The pin of a revolute joint whose bores sit at different z (an elastic
@@ -164,6 +195,7 @@ struct AssemblyOptions {
   std::vector<DriveHold> drives;
   std::vector<AssemblyPoint> points;
   std::vector<PinOption> pins;
+  std::vector<SlideOption> slides;
   // A revolute joint's bores more than this fraction of the model's
   // characteristic length apart in z get an elastic pin; closer: the rigid
   // tie (bit-identical to a model whose parts all sit in one plane).
@@ -266,9 +298,13 @@ struct ChainResult {
 struct DriveResult {
   std::string drive;
   bool rigid = true;
+  bool displacement = false;     // a displacement drive (the *_n and *_m fields), else an angle drive
   double stiffness_nm_per_rad = kRigid;
   double moment_on_j_nm = 0.0;  // about z, on body_j (the drive's effort)
   double twist_rad = 0.0;       // relative rotation theta_j - theta_i of its interfaces
+  double stiffness_n_per_m = kRigid;
+  double force_on_j_n = 0.0;    // along the drive's axis, on body_j (the drive's effort)
+  double stretch_m = 0.0;       // change of s by the structure's deflection
 };
 
 // An elastic pin in one pose: its ends (world, the bores' reference points),
@@ -398,10 +434,12 @@ class ElasticAssembly {
   // body, a frame part without held_face or with one its mesh lacks,
   // held_face on a moving body's part, a frame part no joint, chain or
   // drive acts on, two parts of one body, a joint or motion
-  // drive acting on a part that names no face set for it, a prismatic joint,
-  // a chain without its EA or hinged off the ground, a displacement drive,
-  // an option naming an unknown chain, drive, body or point, a pin option
-  // naming no revolute joint, a pin wider than a bore it passes through.
+  // drive acting on a part that names no face set for it, a chain without
+  // its EA or hinged off the ground, an elastic guide shorter than its
+  // slider's contact length or without one, an option naming an unknown
+  // chain, drive, body, point or prismatic joint, a drive stiffness of the
+  // other coordinate type, a pin option naming no revolute joint, a pin
+  // wider than a bore it passes through.
   // Every part is set up here. `factorized`: empty, or per part (in order)
   // a factorization of the part with its 3-2-1 support, lent by the caller
   // (nullptr: made and owned here); a lent one must be factorized and

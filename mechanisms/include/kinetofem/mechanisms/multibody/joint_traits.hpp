@@ -44,8 +44,13 @@ enum class AssemblyTie {
   None,        // not modelled: the assembly refuses a mechanism with this joint
   Rigid,       // the first assembly_held components (x, y, z, rx, ry, rz, at the joint point)
                // of body_j's interface equal those of body_i's, carried rigidly across
-  ChainSpring  // a tension-only axial spring (EA / free length) from the hinge on the ground
-               // to the tangent point on body_j's roller
+  ChainSpring,  // a tension-only axial spring (EA / free length) from the hinge on the ground
+                // to the tangent point on body_j's roller
+  Slide         // prismatic: body_j's interface follows body_i's carried rigidly across in the
+                // translations across the slide (in the plane and along z) and the three rotations;
+                // the translation along the slide (axis_i turned into world) is free, held by a
+                // displacement drive on it if any. An elastic body_i (the guide) is tied along
+                // its face set at the slider's position (docs/elastic_assembly.md, "Sliders")
 };
 
 struct JointFacts {
@@ -77,7 +82,7 @@ struct JointFacts {
 
   // 3D elastic assembly.
   AssemblyTie assembly_tie;
-  int assembly_held;  // Rigid: components held, 6 (welded) or 5 (rotation about z free)
+  int assembly_held;  // Rigid: components held, 6 (welded) or 5 (rotation about z free); Slide: 5
 };
 
 namespace joint_tables {
@@ -107,8 +112,8 @@ inline constexpr JointFacts prismatic{.name = "prismatic",
                                       .always_distributing = false,
                                       .pivot_i = false,
                                       .pivot_j = false,
-                                      .assembly_tie = AssemblyTie::None,
-                                      .assembly_held = 0};
+                                      .assembly_tie = AssemblyTie::Slide,
+                                      .assembly_held = 5};
 inline constexpr JointFacts fixed{.name = "fixed",
                                   .rows = 3,
                                   .length_row = {true, true, false},
