@@ -179,6 +179,8 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
       }
   // A [[slide]] names a prismatic joint of the linkage, once.
   for (std::size_t k = 0; k < c.count("slide"); ++k) {
+    require(enabled, "{}: [[slide]] needs assembly.enabled = true (it shapes the elastic assembly's guide)",
+            c.where("slide[].joint", k));
     const std::string name = c.text_value("slide[].joint", k);
     const auto joint = std::find_if(model.joints.begin(), model.joints.end(), [&](const mech::Joint& j) { return j.name == name; });
     if (joint == model.joints.end() || joint->type != mech::JointType::Prismatic) {
@@ -214,8 +216,6 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
     require(c.count("assembly_point") == 0, "{}: [[assembly_point]] needs assembly.enabled = true", c.where("assembly_point[].name", 0));
     require(c.count("pin") == 0, "{}: [[pin]] needs assembly.enabled = true (a pin is an elastic member of the assembly)",
             c.where("pin[].joint", 0));
-    require(c.count("slide") == 0, "{}: [[slide]] needs assembly.enabled = true (it shapes the elastic assembly's guide)",
-            c.where("slide[].joint", 0));
     return std::nullopt;
   }
   if (c.count("transmission") > 0)
