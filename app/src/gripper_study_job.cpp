@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
@@ -38,6 +39,9 @@ const std::vector<KeySpec>& gripper_study_schema() {
       {.path = "gripper.gamma", .type = Type::Number, .default_number = 0.82, .min = 0, .doc = "gamma = e / l (offset over rod); 0: central mechanism, eq. (4)"},
       {.path = "gripper.offset_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .default_number = 50, .min = 0, .min_exclusive = true,
        .doc = "offset e for the dimensions (the source: e = H_max / 2 = 50 mm)"},
+      {.path = "object.thickness_mm", .type = Type::Number, .unit = "mm", .to_si = kMm, .min = 0, .min_exclusive = true,
+       .doc = "thickness H of an object to clamp: must lie in the jaws' range 2e - h .. 2e (open 2e apart at the top of the "
+              "operating range with the pressure limits, closing by the jaw travel h); prints its clamp angle and U_V there"},
       {.path = "criterion.tolerance", .type = Type::Number, .default_number = 0.05, .min = 0, .max = 1, .min_exclusive = true, .doc = "|U_V| within 1 +- tolerance"},
       {.path = "criterion.theta12_limit_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 30, .min = 0, .max = 90, .doc = "limit of the slider-guide pressure angle (9)"},
       {.path = "criterion.theta23_limit_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 45, .min = 0, .max = 90, .doc = "limit of the rod-rocker pressure angle (10)"},
@@ -137,6 +141,24 @@ MechanismCaseSummary run_gripper_study(const CaseFile& c, const RunOptions& opti
                             ? mech::gripper_jaw_travel_m(dims.r_m, hull_limited.lo_rad, hull_limited.hi_rad) / dims.r_m
                             : 0.0;
 
+  // The object: its clamp angle in the operating range (the source's compact
+  // design: the jaws 2e apart at its top, e = H_max / 2).
+  std::optional<double> object_phi;
+  if (c.has("object.thickness_mm")) {
+    const double thickness = c.number("object.thickness_mm");
+    require(hull_limited.width_rad() > 0, "{} = {:g} mm: this design has no operating range to clamp in",
+            c.where("object.thickness_mm"), thickness / kMm);
+    const mech::GripperObjectRange jaws =
+        mech::gripper_object_range(2 * dims.e_m, dims.r_m, hull_limited.lo_rad, hull_limited.hi_rad);
+    require(thickness <= jaws.thickness_max_m && thickness >= jaws.thickness_min_m,
+            "{} = {:g} mm: {} than the jaws' range {:.2f}..{:.2f} mm (open 2e = {:g} mm at phi = {:.2f} deg, closing "
+            "by the jaw travel {:.2f} mm to phi = {:.2f} deg)",
+            c.where("object.thickness_mm"), thickness / kMm, thickness > jaws.thickness_max_m ? "thicker" : "thinner",
+            jaws.thickness_min_m / kMm, jaws.thickness_max_m / kMm, 2 * dims.e_m / kMm, hull_limited.hi_rad / kDeg,
+            (jaws.thickness_max_m - jaws.thickness_min_m) / kMm, hull_limited.lo_rad / kDeg);
+    object_phi = mech::gripper_clamp_angle_rad(thickness, 2 * dims.e_m, dims.r_m, hull_limited.lo_rad, hull_limited.hi_rad);
+  }
+
   MechanismCaseSummary summary;
   summary.results_file = mechanism_results_path(c, options, name);
   post::ResultsWriter w(summary.results_file, mechanism_provenance(c, options));
@@ -153,6 +175,10 @@ MechanismCaseSummary run_gripper_study(const CaseFile& c, const RunOptions& opti
                     {"hull_limited_hi_rad", hull_limited.hi_rad}, {"r_m", dims.r_m}, {"l_m", dims.l_m},
                     {"jaw_travel_over_r", travel}, {"central_widest_rad", central.width_rad()},
                     {"best_sigma", best.sigma}, {"best_gamma", best.gamma}, {"best_width_rad", best.range.width_rad()}};
+  if (object_phi) {
+    summary.values.push_back({"object_phi_rad", *object_phi});
+    summary.values.push_back({"object_U_V", mech::gripper_index_offset(*object_phi, sigma, gamma)});
+  }
   std::printf("\nSummary of '%s' (crank-slider gripper, SPEC §6: sigma = %.4g, gamma = %.4g, |U_V| in 1 +- %.3g)\n",
               name.c_str(), sigma, gamma, ro.tolerance);
   std::printf("  %-42s %-28s %s\n", "quantity", "published", "computed");
@@ -168,6 +194,10 @@ MechanismCaseSummary run_gripper_study(const CaseFile& c, const RunOptions& opti
     std::printf("  %-42s %-28s sigma %.4f, gamma %.4f: %.2f..%.2f deg (%.2f deg, %zu evaluations)\n",
                 "widest design (pressure limits, e <= r)", "sigma 1.1, gamma 0.82, 24 deg", best.sigma, best.gamma,
                 best.range.lo_rad / kDeg, best.range.hi_rad / kDeg, best.range.width_rad() / kDeg, best.evaluations);
+  if (object_phi)
+    std::printf("  %-42s %-28s phi = %.2f deg, U_V = %.4f (clamping force per jaw = U_V x drive force per rod)\n",
+                fmt::format("object {:g} mm thick: clamp angle", c.number("object.thickness_mm") / kMm).c_str(), "49..100 mm",
+                *object_phi / kDeg, mech::gripper_index_offset(*object_phi, sigma, gamma));
   std::printf("  (U_V by the source's printed formulas (4), (6); see docs/mechanisms_closed_form.md for its inconsistency)\n");
   std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());
   return summary;

@@ -178,4 +178,23 @@ double gripper_jaw_travel_m(double r_m, double phi1_rad, double phi2_rad) {
   return 2.0 * r_m * std::abs(std::sin(phi2_rad) - std::sin(phi1_rad));
 }
 
+GripperObjectRange gripper_object_range(double open_m, double r_m, double phi1_rad, double phi2_rad) {
+  require(std::isfinite(open_m) && open_m > 0.0, "gripper: jaw opening {} m must be positive", open_m);
+  require(phi1_rad < phi2_rad && phi1_rad >= 0.5 * std::numbers::pi && phi2_rad <= std::numbers::pi,
+          "gripper: the operating range {}..{} deg must be an interval of the second quadrant", phi1_rad * 180.0 / std::numbers::pi,
+          phi2_rad * 180.0 / std::numbers::pi);
+  return {open_m - gripper_jaw_travel_m(r_m, phi1_rad, phi2_rad), open_m};
+}
+
+double gripper_clamp_angle_rad(double thickness_m, double open_m, double r_m, double phi1_rad, double phi2_rad) {
+  const GripperObjectRange range = gripper_object_range(open_m, r_m, phi1_rad, phi2_rad);
+  require(std::isfinite(thickness_m) && thickness_m >= range.thickness_min_m && thickness_m <= range.thickness_max_m,
+          "gripper: an object {} mm thick is outside the jaws' range {:.2f}..{:.2f} mm", thickness_m * 1e3,
+          range.thickness_min_m * 1e3, range.thickness_max_m * 1e3);
+  // sin falls monotonically from phi1 to phi2 in the second quadrant; clamp
+  // the argument against round-off at the ends.
+  const double s = std::clamp(std::sin(phi2_rad) + (open_m - thickness_m) / (2.0 * r_m), std::sin(phi2_rad), std::sin(phi1_rad));
+  return std::numbers::pi - std::asin(s);
+}
+
 }  // namespace kinetofem::mech

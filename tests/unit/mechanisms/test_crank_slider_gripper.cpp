@@ -1,6 +1,7 @@
 // Unit tests of the crank-slider gripper energy index and its range search (SPEC §6).
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -100,4 +101,30 @@ TEST(CrankSliderGripper, DesignSearchRespectsRegionAndImprovesOnGrid) {
   EXPECT_LE(fine.gamma, fine.sigma);  // e <= r
   EXPECT_GE(fine.sigma, s.sigma_lo);
   EXPECT_LE(fine.sigma, s.sigma_hi);
+}
+
+TEST(CrankSliderGripper, ObjectRangeAndClampAngle) {
+  // SPEC §6: open 2e = 100 mm at 163 deg, r = 67 mm, range 139..163 deg:
+  // thickness_min = 100 - 2 r (sin 139 - sin 163) (the source's 0.728 r).
+  const double r = 0.067, open = 0.100, lo = 139 * kDeg, hi = 163 * kDeg;
+  const km::GripperObjectRange range = km::gripper_object_range(open, r, lo, hi);
+  EXPECT_DOUBLE_EQ(range.thickness_max_m, open);
+  EXPECT_NEAR(range.thickness_min_m, open - 2 * r * (std::sin(lo) - std::sin(hi)), 1e-15);
+  // The ends of the range are the ends of the operating range; inside, the
+  // jaw gap at the clamp angle is the object's thickness.
+  EXPECT_NEAR(km::gripper_clamp_angle_rad(open, open, r, lo, hi), hi, 1e-12);
+  EXPECT_NEAR(km::gripper_clamp_angle_rad(range.thickness_min_m, open, r, lo, hi), lo, 1e-7);
+  const double phi = km::gripper_clamp_angle_rad(0.070, open, r, lo, hi);
+  EXPECT_GT(phi, lo);
+  EXPECT_LT(phi, hi);
+  EXPECT_NEAR(open - 2 * r * (std::sin(phi) - std::sin(hi)), 0.070, 1e-15);
+  // Outside: an error naming the thickness and the range.
+  try {
+    km::gripper_clamp_angle_rad(0.120, open, r, lo, hi);
+    ADD_FAILURE() << "no error for 120 mm";
+  } catch (const kinetofem::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("120 mm thick is outside the jaws' range 51.27..100.00 mm"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(km::gripper_object_range(open, r, hi, lo), kinetofem::Error);
 }

@@ -109,4 +109,19 @@ GripperDimensions gripper_dimensions_from_offset(double e_m, double sigma, doubl
 // h = 2 r |sin(phi2) - sin(phi1)| (both jaws).
 double gripper_jaw_travel_m(double r_m, double phi1_rad, double phi2_rad);
 
+// The objects the jaws hold over an operating range phi1 < phi2 (second
+// quadrant, where the jaws close as phi falls): they are open_m apart at phi2
+// (the source's compact choice: open_m = 2 e = H_max) and close by the jaw
+// travel toward phi1, so thickness_min = open_m - jaw travel, thickness_max =
+// open_m (m).
+struct GripperObjectRange {
+  double thickness_min_m = 0.0;
+  double thickness_max_m = 0.0;
+};
+GripperObjectRange gripper_object_range(double open_m, double r_m, double phi1_rad, double phi2_rad);
+// The crank angle at which the jaws hold an object of thickness H in that
+// range: sin(phi) = sin(phi2) + (open_m - H) / (2 r), phi in the second
+// quadrant. Throws, naming H and the range, outside it.
+double gripper_clamp_angle_rad(double thickness_m, double open_m, double r_m, double phi1_rad, double phi2_rad);
+
 }  // namespace kinetofem::mech
