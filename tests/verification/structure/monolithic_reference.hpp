@@ -9,8 +9,14 @@
 // what is shared is the model's definition (meshes, couplings, loads).
 //
 // Joints handled: revolute (5 held components, rigid pin between the two
-// reference points), angle motion drives (rigid, or a torsional spring
-// k (theta_j - theta_i)^2 / 2). Ground: zero motion.
+// reference points), prismatic between two parts (the slider's coupling at
+// its joint point tied in the slide's axes n, z, rx, ry, rz to the guide's
+// window: the faces of the guide's face set whose nodes lie within half the
+// contact length of the slider's position, which must be a station of the
+// assembly's, so that no interpolation enters), angle motion drives (rigid,
+// or a torsional spring k (theta_j - theta_i)^2 / 2), displacement drives
+// (rigid, or an axial spring: ds = t . (v_j - v_i) + (t x d) . rot_i).
+// Ground: zero motion.
 #include <map>
 #include <string>
 #include <vector>
@@ -37,7 +43,8 @@ struct MonolithicResult {
 
 inline MonolithicResult solve_monolithic(const std::vector<pipeline::Part>& parts, const mech::MultibodyModel& model,
                                          const mech::Frame& frame,
-                                         const std::map<std::string, double>& drive_stiffness = {}) {
+                                         const std::map<std::string, double>& drive_stiffness = {},
+                                         const std::map<std::string, double>& slide_contact_length = {}) {
   using SpMat = Eigen::SparseMatrix<double>;
   using Triplet = Eigen::Triplet<double>;
   const size_t np = parts.size();
@@ -102,9 +109,10 @@ inline MonolithicResult solve_monolithic(const std::vector<pipeline::Part>& part
     Eigen::MatrixXd rows;  // 6 x ndof (dense: small models)
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
   };
-  auto coupling_ref = [&](int p, const std::string& face_set, const Eigen::Vector2d& point, bool centroid) {
+  auto coupling_ref = [&](int p, const std::string& face_set, const Eigen::Vector2d& point, bool centroid,
+                          const fem::Mesh* window = nullptr) {
     const fem::Mesh& mesh = parts[size_t(p)].model.mesh;
-    const fem::DistributingCoupling coupling(mesh, face_set);
+    const fem::DistributingCoupling coupling(window ? *window : mesh, face_set);
     const Eigen::Vector3d X =
         centroid ? coupling.centroid() : Eigen::Vector3d(point.x(), point.y(), coupling.centroid().z());
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3 * mesh.node_count(), 6);
@@ -140,9 +148,50 @@ inline MonolithicResult solve_monolithic(const std::vector<pipeline::Part>& part
     return model.bodies[size_t(body_of(body))].points.at(point);
   };
 
+  auto transfer = [](const Eigen::Vector3d& d) {  // carries (translation, rotation) at a point to one d away
+    Eigen::Matrix<double, 6, 6> T = Eigen::Matrix<double, 6, 6>::Identity();
+    Eigen::Matrix3d S;
+    S << 0, -d.z(), d.y(), d.z(), 0, -d.x(), -d.y(), d.x(), 0;
+    T.block<3, 3>(0, 3) = -S;
+    return T;
+  };
   std::vector<Eigen::RowVectorXd> C;
   for (const mech::Joint& j : model.joints) {
-    require(j.type == mech::JointType::Revolute, "monolithic reference: revolute joints only");
+    if (j.type == mech::JointType::Prismatic) {
+      const int pi = part_of(j.body_i), pj = part_of(j.body_j);
+      require(pi >= 0 && pj >= 0, "monolithic reference: a prismatic joint between two parts only");
+      const Eigen::Vector2d axis = j.axis_i.normalized(), line = point_of(j.body_i, j.point_i);
+      const Ref rj = coupling_ref(pj, face_of_joint(pj, j.name), point_of(j.body_j, j.point_j), false);
+      // The slider's position along the guide, and the guide's window there.
+      const Eigen::Vector3d local = R[size_t(pi)].transpose() * (rj.point - origin[size_t(pi)]);
+      const double s = (local.head<2>() - line).dot(axis), c = slide_contact_length.at(j.name);
+      fem::Mesh window = parts[size_t(pi)].model.mesh;
+      std::vector<fem::FaceBlock> faces;
+      for (const fem::FaceBlock& block : window.face_set(face_of_joint(pi, j.name))) {
+        fem::FaceBlock kept{block.type, {}};
+        for (fem::Index f = 0; f < block.size(); ++f) {
+          bool inside = true;
+          for (const fem::Index n : block.face(f))
+            inside = inside && std::abs((window.nodes.row(n).head<2>().transpose() - line).dot(axis) - s) <= 0.5 * c * (1 + 1e-9);
+          if (inside) kept.connectivity.insert(kept.connectivity.end(), block.face(f).begin(), block.face(f).end());
+        }
+        if (kept.size() > 0) faces.push_back(kept);
+      }
+      window.face_sets["window"] = faces;
+      const Ref ri = coupling_ref(pi, "window", line + s * axis, false, &window);
+      const Eigen::Vector3d t = R[size_t(pi)] * Eigen::Vector3d(axis.x(), axis.y(), 0.0);
+      const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(t);
+      const Eigen::Matrix<double, 6, 6> T = transfer(rj.point - ri.point);
+      for (int r = 0; r < 5; ++r) {
+        Eigen::Matrix<double, 1, 6> e = Eigen::Matrix<double, 1, 6>::Zero();
+        if (r == 0) e.head<3>() = n.transpose();
+        if (r == 1) e.head<3>() = Eigen::Vector3d::UnitZ().transpose();
+        if (r >= 2) e(3 + (r - 2)) = 1.0;
+        C.push_back(e * rj.rows - e * T * ri.rows);
+      }
+      continue;
+    }
+    require(j.type == mech::JointType::Revolute, "monolithic reference: revolute and prismatic joints only");
     const int pi = part_of(j.body_i), pj = part_of(j.body_j);
     Ref ri, rj;
     if (pi >= 0) ri = coupling_ref(pi, face_of_joint(pi, j.name), point_of(j.body_i, j.point_i), false);
@@ -165,8 +214,18 @@ inline MonolithicResult solve_monolithic(const std::vector<pipeline::Part>& part
   for (const mech::MotionDrive& d : model.motion_drives) {
     const int pi = part_of(d.coordinate.body_i), pj = part_of(d.coordinate.body_j);
     Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(ndof);
-    if (pj >= 0) g += coupling_ref(pj, face_of_drive(pj, d.name), Eigen::Vector2d::Zero(), true).rows.row(5);
-    if (pi >= 0) g -= coupling_ref(pi, face_of_drive(pi, d.name), Eigen::Vector2d::Zero(), true).rows.row(5);
+    if (d.coordinate.type == mech::CoordinateType::Displacement) {
+      require(pi >= 0 && pj >= 0, "monolithic reference: a displacement drive between two parts only");
+      const Ref vi = coupling_ref(pi, face_of_drive(pi, d.name), point_of(d.coordinate.body_i, d.coordinate.point_i), false);
+      const Ref vj = coupling_ref(pj, face_of_drive(pj, d.name), point_of(d.coordinate.body_j, d.coordinate.point_j), false);
+      const Eigen::Vector2d axis = d.coordinate.axis_i.normalized();
+      const Eigen::Vector3d t = R[size_t(pi)] * Eigen::Vector3d(axis.x(), axis.y(), 0.0);
+      g = t.transpose() * (vj.rows.topRows<3>() - vi.rows.topRows<3>()) +
+          t.cross(vj.point - vi.point).transpose() * vi.rows.bottomRows<3>();
+    } else {
+      if (pj >= 0) g += coupling_ref(pj, face_of_drive(pj, d.name), Eigen::Vector2d::Zero(), true).rows.row(5);
+      if (pi >= 0) g -= coupling_ref(pi, face_of_drive(pi, d.name), Eigen::Vector2d::Zero(), true).rows.row(5);
+    }
     const auto it = drive_stiffness.find(d.name);
     if (it == drive_stiffness.end()) {
       C.push_back(g);
