@@ -9,6 +9,10 @@
 //       A with the known kinematics, M = J2 alpha2 + sum_k rho_k x m_k (a_k - g),
 //       and the belt pull M / r;
 //   (c) the constraint drift of the integrated motion.
+// And two more: the three-link chain of (II.24), two belts in series, against
+// mech::make_three_link_q_manipulator; the two-link arm free under gravity
+// (1 DoF, the belt's row in the forward dynamics), IDAS against CVODES and
+// the energy balance.
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -173,6 +177,90 @@ TEST(TransmissionQManipulator, PathOfHIsSpec4sRoseAndTheBeltMomentIsTheHandKinet
       EXPECT_LT(results.summary.energy_balance_error, 1e-6);
     }
   }
+}
+
+// The three-link chain of SPEC §4 (II.24): link 3 (l3) on link 2 at B, a
+// second belt from link 1's pulley at A to link 3's at B carried by link 2.
+// The source's i21 = 2, i32 = 1.5 are our ratios -2 and -1.5.
+TEST(TransmissionQManipulator, ThreeLinksWithTwoBeltsTraceTheClosedFormOfII24) {
+  const double l3 = 0.12, i21 = 2.0, i32 = 1.5;
+  MultibodyModel m = belt_q_manipulator();
+  m.transmissions[0].ratio = -i21;
+  m.bodies[2].point_masses.clear();
+  m.bodies[2].points["B"] = {kL2, 0.0};
+  Body link3;
+  link3.name = "link3";
+  link3.mass_kg = 0.5;
+  link3.inertia_kgm2 = 0.5 * l3 * l3 / 12.0;
+  link3.com_body = {0.5 * l3, 0.0};
+  link3.pose = {kL1 + kL2, 0.0, 0.0};
+  m.bodies.push_back(link3);
+  m.joints.push_back(make_revolute("B", "link2", "B", "link3", "origin"));
+  Transmission second;
+  second.name = "belt2";
+  second.input = {CoordinateType::Angle, "link1", "origin", "link2", "origin", {1, 0}};
+  second.output = {CoordinateType::Angle, "link2", "origin", "link3", "origin", {1, 0}};
+  second.ratio = -i32;
+  second.radius_m = 0.015;
+  m.transmissions.push_back(second);
+  const MultibodySystem system(m);
+  const Results results = run_kinematics(system, output_times(100));
+  const QManipulator closed_form = make_three_link_q_manipulator(kL1, kL2, l3, i21, i32);
+  double worst = 0.0;
+  for (const Frame& f : results.frames) {
+    const BodyFrame& end = f.bodies.at(3);
+    const Eigen::Vector2d h = end.q.head<2>() + Eigen::Rotation2Dd(end.q.z()) * Eigen::Vector2d(l3, 0.0);
+    worst = std::max(worst, (h - closed_form.point_h(f.drives.at(0).s).p).norm());
+  }
+  fmt::print("three-link Q-manipulator (two belts): |H - H_closed(II.24)| {:.3e} m; drift {:.3e} of l1\n", worst,
+             results.summary.max_drift_relative);
+  // Reference: (II.24), H(P) = l1 e(P) + l2 e(P (1 - i21)) + l3 e(P (1 - i21 + i21 i32)), at each
+  // frame's lever angle: 1e-9 of l1, as for two links.
+  EXPECT_LT(worst, 1e-9 * kL1);
+  EXPECT_LT(results.summary.max_drift_relative, 1e-8);
+}
+
+// The two-link arm without its motor, let go from rest stretched out along x:
+// one DoF, the belt's row in the forward dynamics. Reference: the
+// minimal-coordinate path (CVODES on link 1's angle) and the GGL path
+// (IDAS) agree to 1e-6 (angles relative to the swing, belt moments relative
+// to the peak), as the four-bar's free motion (test_dynamics_four_bar.cpp);
+// H stays on SPEC §4's rose (1e-9 of l1) and the energy balances (a
+// conservative run, the belt does no work: 1e-7 of the energy at the
+// integrators' tolerances, as the slider-crank's, test_dynamics_slider_crank.cpp).
+TEST(TransmissionQManipulator, FreeSwingUnderGravityAgreesOnBothPathsAndConservesEnergy) {
+  MultibodyModel m = belt_q_manipulator();
+  m.motion_drives.clear();
+  const MultibodySystem system(m);
+  const std::vector<double> times = output_times(100);
+  const Results ggl = simulate_ggl(system, times);
+  const Results minimal =
+      simulate_minimal(system, {CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}}, times);
+  const QManipulator closed_form = make_two_link_q_manipulator(kL1, kL2, kSourceRatio);
+  double swing = 0.0, angle_err = 0.0, moment_scale = 0.0, moment_err = 0.0, path = 0.0;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const Frame &a = ggl.frames[k], &b = minimal.frames[k];
+    swing = std::max(swing, std::abs(a.bodies[1].q.z()));
+    for (int body = 1; body < 3; ++body) angle_err = std::max(angle_err, std::abs(a.bodies[body].q.z() - b.bodies[body].q.z()));
+    moment_scale = std::max(moment_scale, std::abs(a.transmissions[0].moment_output_Nm));
+    moment_err = std::max(moment_err, std::abs(a.transmissions[0].moment_output_Nm - b.transmissions[0].moment_output_Nm));
+    for (const Frame* f : {&a, &b}) {
+      const BodyFrame& link2 = f->bodies[2];
+      const Eigen::Vector2d h = link2.q.head<2>() + Eigen::Rotation2Dd(link2.q.z()) * Eigen::Vector2d(kL2, 0.0);
+      path = std::max(path, (h - closed_form.point_h(f->bodies[1].q.z()).p).norm());
+    }
+  }
+  fmt::print("belt Q-manipulator free swing, IDAS vs CVODES: angles {:.2e} of the swing {:.3f} rad, belt moment "
+             "{:.2e} of {:.4g} N m; |H - H_closed| {:.3e} m; energy {:.2e} / {:.2e}\n",
+             angle_err / swing, swing, moment_err / moment_scale, moment_scale, path,
+             ggl.summary.energy_balance_error, minimal.summary.energy_balance_error);
+  EXPECT_GT(swing, 0.5);
+  EXPECT_LT(angle_err / swing, 1e-6);
+  EXPECT_LT(moment_err / moment_scale, 1e-6);
+  EXPECT_LT(path, 1e-9 * kL1);
+  EXPECT_LT(ggl.summary.max_drift_relative, 1e-8);
+  EXPECT_LT(ggl.summary.energy_balance_error, 1e-7);
+  EXPECT_LT(minimal.summary.energy_balance_error, 1e-7);
 }
 
 }  // namespace
