@@ -24,7 +24,8 @@
 // 1e-9 at every output time (the model's kinematics solve to 1e-13 of the
 // characteristic length; measured 1e-13); the virtual work, 1e-9 of the
 // clamping force (measured 4e-15); with the bodies' inertia and weight, the
-// power balance to 1e-9 of the drive's power (measured 3e-12).
+// power balance to 1e-9 of the drive's power (measured 3e-12). And the
+// one-grip case grip_cycle.toml beside it (the last test).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,6 +48,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 const std::filesystem::path kCase = "cases/gripper_parts/case.toml";
+const std::filesystem::path kGripCycle = "cases/gripper_parts/grip_cycle.toml";
 
 struct GripperCase {
   mech::MultibodyModel model;
@@ -64,8 +66,8 @@ const mech::Body& body_named(const mech::MultibodyModel& m, const std::string& n
   return *it;
 }
 
-GripperCase read_gripper_case() {
-  const CaseFile c = CaseFile::load(kCase, linkage_schema(), false, {});
+GripperCase read_gripper_case(const std::filesystem::path& path = kCase) {
+  const CaseFile c = CaseFile::load(path, linkage_schema(), false, {});
   GripperCase g;
   g.model = read_linkage_model(c);
   g.times = mech::equally_spaced_times(c.number("simulation.duration_s"), c.integer("simulation.output_times"));
@@ -212,6 +214,52 @@ TEST(GripperPartsCase, WithInertiaAndWeightThePowerBalanceHolds) {
   std::printf("gripper_parts: with inertia and weight, max |power balance| / drive power = %.3g (dT/dt up to %.3g of "
               "the drive power)\n",
               max_relative, max_inertia_share);
+}
+
+// World position of a point given in the body frame.
+Eigen::Vector2d point_position(const mech::BodyFrame& b, const Eigen::Vector2d& p_body) {
+  const double c = std::cos(b.q(2)), s = std::sin(b.q(2));
+  return b.q.head<2>() + Eigen::Vector2d(c * p_body.x() - s * p_body.y(), s * p_body.x() + c * p_body.y());
+}
+
+TEST(GripperPartsCase, OneGripStartsAtTheTouchAndEndsAtTheClampingForce) {
+  // grip_cycle.toml: the object as a spring between the pads' grip points,
+  // free length = its thickness. Its numbers (initial_mm, stroke_mm, the
+  // free length; README "One grip") must put the touch at t = 0 (force 0) and
+  // the clamping force at the end: checked against the spring's own law
+  // T = k (L0 - L), the case's six-digit mm numbers give L at t = 0 to 1e-6 mm,
+  // i.e. T(0) within k x 1e-9 m = 5e-4 N of zero. Quasi-static (massless,
+  // no gravity), the drive holds the spring by the virtual work of the half
+  // above: F_drive = 2 T / U_V, to 1e-9 of T at every output time but the
+  // first, where T ~ 0.
+  GripperCase g = read_gripper_case(kGripCycle);
+  set_masses(g.model, 0.0, 0.0, Eigen::Vector2d::Zero());
+  ASSERT_EQ(g.model.springs.size(), 1u);
+  ASSERT_TRUE(g.model.point_forces.empty());
+  const mech::Spring& object = g.model.springs[0];
+  const mech::MultibodySystem system(g.model);
+  const mech::Results results = mech::run_kinematics(system, g.times);
+
+  auto compression_force = [&](const mech::Frame& f) {
+    const Eigen::Vector2d pi = point_position(frame_body(f, object.body_i), body_named(g.model, object.body_i).points.at(object.point_i));
+    const Eigen::Vector2d pj = point_position(frame_body(f, object.body_j), body_named(g.model, object.body_j).points.at(object.point_j));
+    return object.stiffness_N_per_m * (object.free_length_m - (pj - pi).norm());
+  };
+  const double touch = compression_force(results.frames.front());
+  const double clamp = compression_force(results.frames.back());
+  EXPECT_NEAR(touch, 0.0, object.stiffness_N_per_m * 1e-9);
+  EXPECT_NEAR(clamp, 500.0, 500.0 * 1e-3);  // 1 mm of squeeze at 500 N/mm, the stroke to six digits
+  double max_relative = 0;
+  for (std::size_t k = 1; k < results.frames.size(); ++k) {
+    const mech::Frame& f = results.frames[k];
+    const double force = compression_force(f);
+    const double predicted = 0.5 * f.drives.at(0).effort * mech::gripper_index_offset(phi_of(f), g.sigma(), g.gamma_r());
+    max_relative = std::max(max_relative, std::abs(predicted - force) / clamp);
+    EXPECT_NEAR(predicted, force, 1e-9 * clamp) << "t = " << f.t << " s";
+  }
+  std::printf("gripper_parts grip_cycle: object force %.3g N at the touch (phi %.4f deg), %.4f N at the end (phi %.4f "
+              "deg); max |(F_drive/2) U_V - T| / T_end = %.3g\n",
+              touch, phi_of(results.frames.front()) / kDeg, clamp, phi_of(results.frames.back()) / kDeg, max_relative);
 }
 
 }  // namespace
