@@ -50,7 +50,7 @@ MechanismExtremes mechanism_extremes(const mech::MultibodyModel& m, const mech::
     const mech::Transmission& tr = m.transmissions[k];
     out.text += fmt::format("  transmission {:<9} ratio {:g}: max |moment| on {} {:.4g} N m, {} {:.4g} N (t = {:.4g} s)\n",
                             tr.name, tr.ratio, tr.output.body_j, moment,
-                            tr.kind == mech::TransmissionKind::Gear ? "tooth force" : "belt pull", force, t_peak);
+                            mech::transmission_force_name(tr.kind), force, t_peak);
   }
   const std::size_t n_chains = res.frames.front().chains.size();
   for (std::size_t ch = 0; ch < n_chains; ++ch) {

@@ -123,6 +123,17 @@ struct MotionDrive {
 // whose multiplier gives the moment it transmits (results.hpp: TransmissionFrame).
 enum class TransmissionKind { Belt, Gear };
 
+// What a kind's force (output moment / radius) is, in words: "belt pull", "tooth force".
+inline const char* transmission_force_name(TransmissionKind kind) {
+  switch (kind) {
+    case TransmissionKind::Belt:
+      return "belt pull";
+    case TransmissionKind::Gear:
+      return "tooth force";
+  }
+  return "force";
+}
+
 struct Transmission {
   std::string name;
   RelativeCoordinate input, output;  // both CoordinateType::Angle
