@@ -81,11 +81,6 @@ void LinearStaticAnalysis::factorize_direct() {
     solver_.factorize(stiffness_.free_free);
     factorized_ = true;
   } catch (const NotPositiveDefinite& error) {
-    if (error.equation() < 0) throw;
-    // Name the node and direction of the equation where the factorization failed.
-    Index dof = -1;
-    for (Index d = 0; d < dofs_.dof_count(); ++d)
-      if (dofs_.equation(d) == error.equation()) dof = d;
     // The commonest cause, worth naming: a direction no support holds at all
     // (the whole model can translate along it).
     std::string free_directions;
@@ -94,6 +89,18 @@ void LinearStaticAnalysis::factorize_direct() {
       for (const auto& support : model_.supports) held = held || (support.fixed[c] && !support.nodes.empty());
       if (!held) free_directions += std::string(free_directions.empty() ? "" : ", ") + "xyz"[c];
     }
+    // No equation: the factorization went through on round-off pivots and
+    // only the condition estimate caught it (which of the two happens
+    // depends on the CPU's BLAS kernels); the free directions still name it.
+    if (error.equation() < 0) {
+      if (free_directions.empty()) throw;
+      fail("{}: no support fixes displacements along {}, so the model can move freely", error.what(),
+           free_directions);
+    }
+    // Name the node and direction of the equation where the factorization failed.
+    Index dof = -1;
+    for (Index d = 0; d < dofs_.dof_count(); ++d)
+      if (dofs_.equation(d) == error.equation()) dof = d;
     const std::string cause =
         free_directions.empty()
             ? std::string("the model has a rigid-body mode left unsupported or an element without stiffness")
