@@ -222,7 +222,7 @@ TEST(LinkageErrors, DuplicateJointName) {
   std::string text = with_joint();
   text += "[[joint]]\nname = \"pivot\"\ntype = \"revolute\"\nbody_i = \"frame\"\nbody_j = \"lever\"\n";
   const std::string message = error_of(text);
-  EXPECT_NE(message.find("key 'joint[1].name' = \"pivot\": a second joint or motion drive of that name"), std::string::npos)
+  EXPECT_NE(message.find("key 'joint[1].name' = \"pivot\": a second joint, motion drive or transmission of that name"), std::string::npos)
       << message;
 }
 
