@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/units.hpp"
@@ -22,6 +23,12 @@ mech::AssemblyTie assembly_tie_of(const CaseFile& c, std::size_t k) {
   require(named.has_value(), "{} = \"{}\": unknown joint type", c.where("joint[].type", k), type);
   return mech::joint_facts(*named).assembly_tie;
 }
+// A gear pair's mesh stiffness: ISO 6336-1 method B's mean c_gamma_alpha for
+// solid steel spur gears, 20 N/(mm um); the pressure angle of ISO 53's
+// basic rack, 20 deg, gives the base radius.
+constexpr double kDefaultMeshStiffnessNPerMmUm = 20.0;
+constexpr double kMeshStiffnessToSi = 1e9;  // N/(mm um) -> N/m^2
+constexpr double kPressureAngleRad = 20.0 * std::numbers::pi / 180.0;
 // EA is a stiffness in N, not a force: a steel bar of 100 cm^2 has 2e9 N.
 constexpr double kMaxEaN = 1e12;
 constexpr const char* kEaNote = "a plausible axial stiffness EA";
@@ -44,6 +51,51 @@ double chain_ea(const CaseFile& c, const std::string& ea_key, const std::string&
   const double ea = c.number(ea_key, k);
   require(std::isfinite(ea), "{} = {}: the chain's axial stiffness must be a finite number of N", c.where(ea_key, k), ea);
   return ea * double(c.integer(strands_key, k));
+}
+
+// A transmission's member in the assembly: its torsional stiffness on the
+// output coordinate, given or from the belt's spans or the gear's mesh.
+structure::TransmissionMember read_transmission_member(const CaseFile& c, std::size_t k) {
+  const std::string p = "transmission[].";
+  structure::TransmissionMember m;
+  m.transmission = c.text_value(p + "name", k);
+  const bool belt = c.text_value(p + "kind", k) == "belt";
+  const double r = c.number(p + "radius_mm", k);
+  for (const char* key : {"belt_ea_n", "span_length_mm", "preload_n"})
+    require(belt || !c.has(p + key, k), "{}: transmission '{}' is a gear: this key is a belt's", c.where(p + key, k),
+            m.transmission);
+  for (const char* key : {"face_width_mm", "mesh_stiffness_n_per_mm_um"})
+    require(!belt || !c.has(p + key, k), "{}: transmission '{}' is a belt: this key is a gear's", c.where(p + key, k),
+            m.transmission);
+  if (belt) {
+    m.radius_m = r;
+    m.preload_n = c.number(p + "preload_n", k);
+  }
+  if (c.has(p + "stiffness_n_m_per_rad", k)) {
+    m.torsional_stiffness_nm_per_rad = c.number(p + "stiffness_n_m_per_rad", k);
+    require(std::isfinite(m.torsional_stiffness_nm_per_rad), "{} = {}: must be a finite number of N*m/rad",
+            c.where(p + "stiffness_n_m_per_rad", k), m.torsional_stiffness_nm_per_rad);
+    return m;
+  }
+  if (belt) {
+    require(c.has(p + "span_length_mm", k),
+            "{}: belt '{}' in the elastic assembly needs span_length_mm (its spans' free length) or "
+            "stiffness_n_m_per_rad",
+            c.where(p + "name", k), m.transmission);
+    const double ea = c.number(p + "belt_ea_n", k), b = c.number(p + "span_length_mm", k);
+    require(std::isfinite(ea), "{} = {}: must be a finite number of N", c.where(p + "belt_ea_n", k), ea);
+    const double spans = m.preload_n > 0 ? 2.0 : 1.0;  // preloaded: both spans carry
+    m.torsional_stiffness_nm_per_rad = spans * ea * r * r / b;
+  } else {
+    require(c.has(p + "face_width_mm", k),
+            "{}: gear '{}' in the elastic assembly needs face_width_mm (its mesh's face width) or "
+            "stiffness_n_m_per_rad",
+            c.where(p + "name", k), m.transmission);
+    const double rb = r * std::cos(kPressureAngleRad);
+    m.torsional_stiffness_nm_per_rad =
+        c.number(p + "mesh_stiffness_n_per_mm_um", k) * kMeshStiffnessToSi * c.number(p + "face_width_mm", k) * rb * rb;
+  }
+  return m;
 }
 
 }  // namespace
@@ -115,6 +167,34 @@ void add_linkage_assembly_keys(std::vector<KeySpec>& s) {
                .min_exclusive = true,
                .doc = "displacement drive, elastic assembly: axial stiffness of the drive train (screw, cylinder, "
                       "belt); absent: rigid"});
+  s.push_back({.path = "transmission[].stiffness_n_m_per_rad", .type = Type::Number, .unit = "N*m/rad", .min = 0,
+               .min_exclusive = true,
+               .doc = "elastic assembly: torsional stiffness of the transmission on its output coordinate; default: "
+                      "from belt_ea_n and span_length_mm (a belt), face_width_mm (a gear)"});
+  s.push_back({.path = "transmission[].belt_ea_n", .type = Type::Number, .unit = "N",
+               .default_number = mech::manipulator::kDefaultChain.ea_per_strand_n, .min = 0, .max = kMaxEaN,
+               .min_exclusive = true,
+               .doc = fmt::format("belt, elastic assembly: axial stiffness EA of the belt or chain (default: a {} roller "
+                                  "chain, docs/transmissions.md)",
+                                  mech::manipulator::kDefaultChain.designation),
+               .range_note = kEaNote});
+  s.push_back({.path = "transmission[].span_length_mm", .type = Type::Number, .unit = "mm", .to_si = units::kMm, .min = 0,
+               .max = 1e6, .min_exclusive = true,
+               .doc = "belt, elastic assembly: free length of each span (about the pulleys' centre distance); "
+                      "required for a belt in the assembly unless stiffness_n_m_per_rad is given"});
+  s.push_back({.path = "transmission[].preload_n", .type = Type::Number, .unit = "N", .default_number = 0, .min = 0,
+               .max = 1e9,
+               .doc = "belt, elastic assembly: the spans' preload; > 0: both spans carry (k = 2 EA r^2 / b) and a span "
+                      "that would go slack is an error; 0: one span carries (k = EA r^2 / b, a chain)",
+               .zero_allowed = true});
+  s.push_back({.path = "transmission[].face_width_mm", .type = Type::Number, .unit = "mm", .to_si = units::kMm, .min = 0,
+               .max = 1e4, .min_exclusive = true,
+               .doc = "gear, elastic assembly: face width b of the mesh; required for a gear in the assembly unless "
+                      "stiffness_n_m_per_rad is given"});
+  s.push_back({.path = "transmission[].mesh_stiffness_n_per_mm_um", .type = Type::Number, .unit = "N/(mm*um)",
+               .default_number = kDefaultMeshStiffnessNPerMmUm, .min = 0, .max = 1e3, .min_exclusive = true,
+               .doc = "gear, elastic assembly: mesh stiffness per face width c_gamma (default: ISO 6336-1 method B's "
+                      "mean for solid steel spur gears); k = c_gamma b (r cos 20 deg)^2"});
   s.push_back({.path = "slide", .type = Type::TableArray,
                .doc = "elastic assembly: the bearing of a prismatic joint's slider on an elastic guide (body_i with a "
                       "part); joints not listed get the defaults"});
@@ -177,6 +257,12 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
         require(enabled, "{}: set assembly.enabled = true to use it (the drive's stiffness only enters the elastic assembly)",
                 c.where(key, k));
       }
+  for (std::size_t k = 0; k < c.count("transmission"); ++k)
+    for (const char* key : {"stiffness_n_m_per_rad", "belt_ea_n", "span_length_mm", "preload_n", "face_width_mm",
+                            "mesh_stiffness_n_per_mm_um"})
+      require(enabled || !c.has(std::string("transmission[].") + key, k),
+              "{}: set assembly.enabled = true to use it (the transmission's stiffness only enters the elastic assembly)",
+              c.where(std::string("transmission[].") + key, k));
   // A [[slide]] names a prismatic joint of the linkage, once.
   for (std::size_t k = 0; k < c.count("slide"); ++k) {
     require(enabled, "{}: [[slide]] needs assembly.enabled = true (it shapes the elastic assembly's guide)",
@@ -218,10 +304,6 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
             c.where("pin[].joint", 0));
     return std::nullopt;
   }
-  if (c.count("transmission") > 0)
-    fail("{} = true: transmission '{}': the elastic assembly does not model transmissions yet (leave "
-         "assembly.enabled = false for this linkage)",
-         c.where("assembly.enabled"), c.text_value("transmission[].name", 0));
   require(!bodies_with_parts.empty(),
           "{} = true, but no body has a [[part]]: the elastic assembly needs at least one FE part",
           c.where("assembly.enabled"));
@@ -269,6 +351,7 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
       hold.axial_stiffness_n_per_m = stiffness;
       o.drives.push_back(hold);
     }
+  for (std::size_t k = 0; k < c.count("transmission"); ++k) o.transmissions.push_back(read_transmission_member(c, k));
   for (std::size_t k = 0; k < c.count("slide"); ++k) {
     structure::SlideOption slide{c.text_value("slide[].joint", k)};
     if (c.has("slide[].contact_length_mm", k)) slide.contact_length_m = c.number("slide[].contact_length_mm", k);

@@ -77,6 +77,9 @@ struct AssemblyRecorder {
   // (rad) of an angle drive, force (N) and stretch (m) of a displacement one.
   std::vector<post::FieldMatrix> chain_tension, chain_elongation, drive_effort, drive_change;
   std::vector<bool> drive_displacement;
+  // Per transmission: moment on the output's body_j (N m), twist (rad), span
+  // tensions (N, a belt's two spans).
+  std::vector<post::FieldMatrix> transmission_moment, transmission_twist, transmission_spans;
   std::vector<post::FieldMatrix> pin_bending, pin_shear, pin_deflection;  // per elastic pin (summary.pins order)
   std::vector<post::FieldMatrix> contact_table;    // per pin in contact (summary.contacts order), T x 6
   std::vector<post::FieldMatrix> point_coupling;   // per point: its displacement with couplings (pins in contact)
@@ -324,6 +327,33 @@ struct AssemblyRecorder {
           summary.worst_chain_mismatch = std::max(summary.worst_chain_mismatch,
                                                   std::abs(pose.chains[c].tension_n - cf.tension_N) / cf.tension_N);
     }
+    if (summary.transmissions.empty())
+      for (const auto& t : pose.transmissions) {
+        summary.transmissions.push_back({.name = t.transmission, .has_spans = t.has_spans,
+                                         .min_span_tension_n = std::numeric_limits<double>::infinity()});
+        transmission_moment.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        transmission_twist.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 1));
+        transmission_spans.push_back(post::FieldMatrix::Zero(Eigen::Index(T), 2));
+      }
+    double largest_moment = 0.0;
+    for (const auto& tf : frame.transmissions) largest_moment = std::max(largest_moment, std::abs(tf.moment_output_Nm));
+    for (size_t t = 0; t < pose.transmissions.size(); ++t) {
+      const TransmissionResult& tr = pose.transmissions[t];
+      auto& peak = summary.transmissions[t];
+      transmission_moment[t](Eigen::Index(k), 0) = tr.moment_output_nm;
+      transmission_twist[t](Eigen::Index(k), 0) = tr.twist_rad;
+      transmission_spans[t](Eigen::Index(k), 0) = tr.span_tension_n[0];
+      transmission_spans[t](Eigen::Index(k), 1) = tr.span_tension_n[1];
+      if (std::abs(tr.moment_output_nm) > peak.max_moment_nm)
+        peak.max_moment_nm = std::abs(tr.moment_output_nm), peak.max_moment_time_s = frame.t;
+      peak.max_twist_rad = std::max(peak.max_twist_rad, std::abs(tr.twist_rad));
+      const double least = std::min(tr.span_tension_n[0], tr.span_tension_n[1]);
+      if (least < peak.min_span_tension_n) peak.min_span_tension_n = least, peak.min_span_tension_time_s = frame.t;
+      if (largest_moment > 0)
+        summary.worst_transmission_mismatch =
+            std::max(summary.worst_transmission_mismatch,
+                     std::abs(tr.moment_output_nm - frame.transmissions.at(t).moment_output_Nm) / largest_moment);
+    }
     for (size_t d = 0; d < pose.drives.size(); ++d) {
       const DriveResult& dr = pose.drives[d];
       drive_effort[d](Eigen::Index(k), 0) = dr.displacement ? dr.force_on_j_n : dr.moment_on_j_nm;
@@ -408,6 +438,13 @@ struct AssemblyRecorder {
         writer.write_history(base + ".moment", "N*m", drive_effort[d]);
         writer.write_history(base + ".twist", "rad", drive_change[d]);
       }
+    }
+    for (size_t t = 0; t < summary.transmissions.size(); ++t) {
+      const std::string base = "assembly.transmission." + summary.transmissions[t].name;
+      writer.write_history(base + ".moment", "N*m", transmission_moment[t]);
+      writer.write_history(base + ".twist", "rad", transmission_twist[t]);
+      if (summary.transmissions[t].has_spans)
+        writer.write_history(base + ".span_tension", "N", transmission_spans[t], {"span1", "span2"});
     }
     for (size_t i = 0; i < summary.pins.size(); ++i) {
       const std::string base = post::layout::kAssemblyPinPrefix + summary.pins[i].joint + ".";
@@ -497,6 +534,11 @@ AssemblySummary analyse_assembly_over_motion(ElasticAssembly& assembly, const st
         "elastic assembly: the chain force of the statically determinate assembly differs from the dynamics' tension by "
         "{:.2e} of it (tolerance 1e-6)",
         summary.worst_chain_mismatch);
+  if (determinate && summary.worst_transmission_mismatch > 1e-6)
+    fail(
+        "elastic assembly: a transmission's moment in the statically determinate assembly differs from the dynamics' by "
+        "{:.2e} of the largest (tolerance 1e-6)",
+        summary.worst_transmission_mismatch);
 
   recorder.write_envelopes(motion);
   if (static_pose) recorder.record_static_study(assembly.solve(*static_pose), *static_pose);
@@ -549,6 +591,12 @@ std::string format_assembly_summary(const AssemblySummary& s) {
                        p.joint, p.diameter_m / kMm, p.length_m / kMm, p.max_bending_stress_pa / units::kMpa,
                        p.max_bending_time_s, p.max_shear_stress_pa / units::kMpa, p.max_shear_time_s,
                        p.max_deflection_m / kMm);
+  for (const auto& t : s.transmissions)
+    out += fmt::format("    transmission {}: largest moment {:.4g} N m at t = {:.4f} s, twist up to {:.4g} mrad{}\n", t.name,
+                       t.max_moment_nm, t.max_moment_time_s, t.max_twist_rad * 1e3,
+                       t.has_spans ? fmt::format("; least span tension {:.4g} N at t = {:.4f} s", t.min_span_tension_n,
+                                                 t.min_span_tension_time_s)
+                                   : std::string());
   for (const auto& c : s.contacts)
     out += fmt::format("    pin {} in contact with bore '{}' of {} (d {:.2f} mm, radial clearance {:.1f} um{}): peak "
                        "pressure {:.3f} MPa at t = {:.4f} s, {:.0f} deg from the part's x axis, arc {:.0f} deg there; "

@@ -74,6 +74,11 @@ const DriveResult& PoseSolution::drive(const std::string& name) const {
     if (d.drive == name) return d;
   fail("elastic assembly: no motion drive '{}'", name);
 }
+const TransmissionResult& PoseSolution::transmission(const std::string& name) const {
+  for (const auto& t : transmissions)
+    if (t.transmission == name) return t;
+  fail("elastic assembly: no transmission '{}'", name);
+}
 const PinResult& PoseSolution::pin(const std::string& joint) const {
   for (const auto& p : pins)
     if (p.joint == joint) return p;
@@ -171,6 +176,14 @@ struct ElasticAssembly::Impl {
     bool displacement = false;
     Vector2d axis = Vector2d::UnitX(), point_i = Vector2d::Zero(), point_j = Vector2d::Zero();  // displacement
   };
+  // A transmission: the interfaces of its input's and output's two ends
+  // (-1: the rigid ground), its ratio and member.
+  struct TransmissionData {
+    int transmission = -1;
+    int in_i = -1, in_j = -1, out_i = -1, out_j = -1;
+    double ratio = 1.0;
+    TransmissionMember member;
+  };
   struct PointData {
     int body = -1, iface = -1;
   };
@@ -194,6 +207,7 @@ struct ElasticAssembly::Impl {
   std::vector<std::vector<int>> interfaces_of_body;
   std::vector<JointData> joints;
   std::vector<DriveData> drives;
+  std::vector<TransmissionData> transmissions;
   std::vector<PinData> pins;
   std::vector<PointData> points;
   std::vector<ContactBore> contact_bores;
@@ -249,6 +263,12 @@ struct ElasticAssembly::Impl {
   // centroid of the face set its part names (an angle drive), or at `point`
   // with the face set's centroid z (a displacement drive).
   int add_drive_side(int body, const std::string& drive, const Vector2d& point, bool centroid_reference);
+  // Adds transmission t with the interfaces of its four ends.
+  void add_transmission(size_t t);
+  // Every TransmissionMember must name a transmission, with a valid stiffness.
+  void check_transmission_options() const;
+  // ds_out - ratio ds_in by the interfaces' motion (6M, world).
+  Eigen::RowVectorXd transmission_row(const TransmissionData& td) const;
   // Adds a tracked point with its interface.
   void add_point(const AssemblyPoint& tp);
   // The bores whose pins are in contact (the parts' joint attachments), after
@@ -515,6 +535,9 @@ struct ElasticAssembly::Impl {
   JointLoad held_joint_load(JointLoad jl, const JointData& jd, const Pose& pose, const PoseUnknowns& solved) const;
   // The twist and moment (angle) or stretch and force (displacement) of every drive.
   void add_drive_results(PoseSolution& out, const Pose& pose, const PoseUnknowns& solved) const;
+  // The moment and twist of every transmission, a belt's span tensions; a
+  // preloaded span that would go slack is an Error naming the time.
+  void add_transmission_results(PoseSolution& out, const mech::Frame& frame, const PoseUnknowns& solved) const;
   // The end motions (u_i, theta_i, u_j, theta_j) of an elastic pin; a side
   // on the rigid ground: zero.
   static Vector12d pin_motion(const PoseMembers::PinPose& pp, const PoseUnknowns& solved) {
@@ -585,15 +608,14 @@ ElasticAssembly::Impl::Impl(const std::vector<Part>& given, const mech::Multibod
   system = std::make_unique<mech::MultibodySystem>(model);
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
   index_bodies();
-  require(model.transmissions.empty(),
-          "elastic assembly: transmission '{}' of mechanism '{}': the elastic assembly does not model transmissions yet",
-          model.transmissions.empty() ? std::string() : model.transmissions.front().name, model.name);
   for (const Part& part : given) add_part(part, factorized.empty() ? nullptr : factorized[parts.size()]);
   check_member_options();
   for (size_t j = 0; j < model.joints.size(); ++j) add_joint(j);
   check_pin_options();
   check_slide_options();
   for (size_t d = 0; d < model.motion_drives.size(); ++d) add_drive(d);
+  check_transmission_options();
+  for (size_t t = 0; t < model.transmissions.size(); ++t) add_transmission(t);
   for (const AssemblyPoint& tp : options.points) add_point(tp);
   find_contact_bores();
   for (const auto& part : parts)
@@ -654,6 +676,7 @@ void ElasticAssembly::Impl::add_part(const Part& part, fem::LinearStaticAnalysis
     return std::any_of(model.motion_drives.begin(), model.motion_drives.end(),
                        [&](const mech::MotionDrive& md) { return md.name == d.drive; });
   });
+  own.transmissions.clear();  // a transmission's moments are internal here too
   // No equilibrium check in loads_at: without the joint reactions the loads
   // are not self-equilibrated; the resultant is checked against the
   // multibody body instead (solve).
@@ -860,6 +883,102 @@ void ElasticAssembly::Impl::add_drive(size_t d) {
   dd.if_i = add_drive_side(dd.body_i, drive.name, dd.point_i, !dd.displacement);
   dd.if_j = add_drive_side(dd.body_j, drive.name, dd.point_j, !dd.displacement);
   drives.push_back(dd);
+}
+
+void ElasticAssembly::Impl::check_transmission_options() const {
+  for (const TransmissionMember& o : options.transmissions) {
+    require(std::any_of(model.transmissions.begin(), model.transmissions.end(),
+                        [&](const mech::Transmission& t) { return t.name == o.transmission; }),
+            "elastic assembly: options name transmission '{}', which the mechanism '{}' lacks", o.transmission,
+            model.name);
+    require(o.torsional_stiffness_nm_per_rad >= 0 && !std::isnan(o.torsional_stiffness_nm_per_rad),
+            "elastic assembly: transmission '{}': torsional stiffness {} N m/rad must be >= 0 (kRigid: held rigidly)",
+            o.transmission, o.torsional_stiffness_nm_per_rad);
+    require(o.radius_m >= 0 && std::isfinite(o.radius_m) && o.preload_n >= 0 && std::isfinite(o.preload_n),
+            "elastic assembly: transmission '{}': radius {} m and preload {} N must be >= 0 and finite", o.transmission,
+            o.radius_m, o.preload_n);
+  }
+}
+
+void ElasticAssembly::Impl::add_transmission(size_t t) {
+  const mech::Transmission& tr = model.transmissions[t];
+  const std::string who = fmt::format("transmission '{}'", tr.name);
+  TransmissionData td;
+  td.transmission = int(t);
+  td.ratio = tr.ratio;
+  td.member.transmission = tr.name;
+  for (const TransmissionMember& o : options.transmissions)
+    if (o.transmission == tr.name) td.member = o;
+  // An end on the rigid ground is held; on a part, the face set its
+  // attachment for that side names (at its centroid, like a drive's).
+  auto end = [&](const std::string& body_name, loads::TransmissionSide side) {
+    const int body = body_index(body_name, who);
+    if (rigid_ground(body)) return -1;
+    std::string face_set;
+    const int p = part_of_body[size_t(body)];
+    if (p >= 0) {
+      for (const auto& a : parts[size_t(p)]->attachments.transmissions)
+        if (a.transmission == tr.name && a.side == side) face_set = a.face_set;
+      require(!face_set.empty(),
+              "{}: {} acts on body '{}' through its {} but the part names no face set for it "
+              "(LinkDefinition::transmissions)",
+              parts[size_t(p)]->label, who, body_name, side == loads::TransmissionSide::Input ? "input" : "output");
+    }
+    return add_interface(body, Kind::Drive, tr.name, face_set, Vector2d::Zero(), true);
+  };
+  td.in_i = end(tr.input.body_i, loads::TransmissionSide::Input);
+  td.in_j = end(tr.input.body_j, loads::TransmissionSide::Input);
+  td.out_i = end(tr.output.body_i, loads::TransmissionSide::Output);
+  td.out_j = end(tr.output.body_j, loads::TransmissionSide::Output);
+  transmissions.push_back(td);
+}
+
+Eigen::RowVectorXd ElasticAssembly::Impl::transmission_row(const TransmissionData& td) const {
+  Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(6 * Eigen::Index(interfaces.size()));
+  auto add = [&](int k, double w) {
+    if (k >= 0) g(6 * k + 5) += w;
+  };
+  add(td.out_j, 1.0);
+  add(td.out_i, -1.0);
+  add(td.in_j, -td.ratio);
+  add(td.in_i, td.ratio);
+  return g;
+}
+
+void ElasticAssembly::Impl::add_transmission_results(PoseSolution& out, const mech::Frame& frame,
+                                                     const PoseUnknowns& solved) const {
+  for (const TransmissionData& td : transmissions) {
+    const TransmissionMember& m = td.member;
+    TransmissionResult tr;
+    tr.transmission = m.transmission;
+    tr.rigid = std::isinf(m.torsional_stiffness_nm_per_rad);
+    tr.stiffness_nm_per_rad = m.torsional_stiffness_nm_per_rad;
+    const Eigen::RowVectorXd g = transmission_row(td);
+    for (Eigen::Index k = 0; k < g.size() / 6; ++k) tr.twist_rad += g(6 * k + 5) * solved.u_of(int(k))(5);
+    // Its interfaces carry g^T times the output moment.
+    tr.moment_output_nm = td.out_j >= 0   ? solved.lambda_of(td.out_j)(5)
+                          : td.out_i >= 0 ? -solved.lambda_of(td.out_i)(5)
+                          : td.in_j >= 0  ? -solved.lambda_of(td.in_j)(5) / td.ratio
+                                          : solved.lambda_of(td.in_i)(5) / td.ratio;
+    if (m.radius_m > 0) {
+      tr.has_spans = true;
+      const double pull = tr.moment_output_nm / m.radius_m;
+      if (m.preload_n > 0) {
+        tr.span_tension_n[0] = m.preload_n + 0.5 * pull;
+        tr.span_tension_n[1] = m.preload_n - 0.5 * pull;
+        for (int span = 0; span < 2; ++span)
+          require(tr.span_tension_n[span] > 0,
+                  "elastic assembly at t = {:.6g} s: transmission '{}': span {} goes slack (tension {:.6g} N: the "
+                  "preload {:.6g} N {} half the pull {:.6g} N): raise the preload, or give none (one span carries)",
+                  frame.t, m.transmission, span + 1, tr.span_tension_n[span], m.preload_n, span == 0 ? "plus" : "less",
+                  std::abs(pull));
+      } else {
+        tr.span_tension_n[0] = std::max(pull, 0.0);
+        tr.span_tension_n[1] = std::max(-pull, 0.0);
+      }
+    }
+    out.transmissions.push_back(tr);
+  }
 }
 
 void ElasticAssembly::Impl::tie_slide(JointData& jd, const mech::Joint& joint, const std::string& who) {
@@ -1590,6 +1709,20 @@ ElasticAssembly::Impl::PoseMembers ElasticAssembly::Impl::members_of(const mech:
       spring_name.push_back("drive." + name);
     }
   }
+  for (const TransmissionData& td : transmissions) {
+    const std::string& name = model.transmissions[size_t(td.transmission)].name;
+    const Eigen::RowVectorXd g = transmission_row(td);
+    const double k = td.member.torsional_stiffness_nm_per_rad;
+    if (std::isinf(k)) {
+      add_row(g, 5, fmt::format("transmission '{}'", name));
+    } else {
+      S += k * g.transpose() * g;
+      if (k > 0) max_compliance = std::max(max_compliance, Lr * Lr / k);
+      spring_g.push_back(g);
+      spring_k.push_back(k);
+      spring_name.push_back("transmission." + name);
+    }
+  }
   return out;
 }
 
@@ -2023,6 +2156,7 @@ PoseSolution ElasticAssembly::Impl::solve_pose(const mech::Frame& frame,
   add_body_motions(out, solved);
   add_joint_loads(out, frame, pose, members, solved, scales.P);
   add_drive_results(out, pose, solved);
+  add_transmission_results(out, frame, solved);
   add_pin_results(out, members, solved);
   {
     // Elastic pins carry the load systems of the rigid tie they replace.

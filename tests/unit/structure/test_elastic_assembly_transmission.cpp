@@ -1,7 +1,6 @@
-// The elastic assembly does not model a transmission (a belt or gear train
-// between joint angles, mech::Transmission) yet: a linkage with one is an
-// Error naming it, before any part is set up, not an assembly silently
-// without its belt.
+// A transmission in the elastic assembly (a belt or gear train between joint
+// angles, mech::Transmission): its options must name it, with valid values
+// (the member's statics: tests/verification/structure/test_assembly_transmission.cpp).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -12,7 +11,7 @@
 namespace kinetofem::structure {
 namespace {
 
-TEST(ElasticAssemblyTransmission, ALinkageWithATransmissionIsRefusedNamingIt) {
+TEST(ElasticAssemblyTransmission, OptionsNamingNoTransmissionOrBadValuesAreErrors) {
   mech::MultibodyModel m;
   m.name = "belt arm";
   mech::Body ground;
@@ -36,14 +35,21 @@ TEST(ElasticAssemblyTransmission, ALinkageWithATransmissionIsRefusedNamingIt) {
   belt.ratio = -4.0;
   belt.radius_m = 0.02;
   m.transmissions.push_back(belt);
-  try {
-    ElasticAssembly assembly({}, m);
-    FAIL() << "expected an Error";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("transmission 'belt'"), std::string::npos) << what;
-    EXPECT_NE(what.find("does not model transmissions yet"), std::string::npos) << what;
-  }
+  auto error_of = [&](const TransmissionMember& member) {
+    AssemblyOptions o;
+    o.transmissions = {member};
+    try {
+      ElasticAssembly assembly({}, m, o);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_of({"chain", 1.0, 0.0, 0.0}).find("transmission 'chain', which the mechanism 'belt arm' lacks"),
+            std::string::npos);
+  EXPECT_NE(error_of({"belt", -1.0, 0.0, 0.0}).find("torsional stiffness -1 N m/rad must be >= 0"), std::string::npos);
+  EXPECT_NE(error_of({"belt", 1.0, 0.02, -5.0}).find("preload -5 N must be >= 0"), std::string::npos);
+  EXPECT_EQ(error_of({"belt", 1.0, 0.02, 5.0}), "");
 }
 
 }  // namespace

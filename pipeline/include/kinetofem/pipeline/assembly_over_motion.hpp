@@ -110,9 +110,21 @@ struct AssemblySummary {
   std::vector<ContactPeak> contacts;
   double worst_contact_penetration_m = 0.0, worst_contact_resultant_error = 0.0, worst_contact_reciprocity = 0.0;
   structure::Indeterminacy indeterminacy;  // of the first pose (the same at every regular pose)
+  // Per transmission: its largest moment on the output's body_j, twist and,
+  // for a belt, the least span tension over the motion.
+  struct TransmissionPeak {
+    std::string name;
+    double max_moment_nm = 0.0, max_moment_time_s = 0.0;  // |moment|
+    double max_twist_rad = 0.0;                           // |twist|
+    bool has_spans = false;
+    double min_span_tension_n = 0.0, min_span_tension_time_s = 0.0;
+  };
+  std::vector<TransmissionPeak> transmissions;
   // |assembly chain tension - the dynamics'| / the dynamics', worst over the
-  // poses (0 for determinate linkages up to round-off).
+  // poses (0 for determinate linkages up to round-off); likewise a
+  // transmission's moment, relative to its largest.
   double worst_chain_mismatch = 0.0;
+  double worst_transmission_mismatch = 0.0;
   structure::AssemblyStatistics statistics;
 };
 

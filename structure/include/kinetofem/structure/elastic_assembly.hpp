@@ -53,6 +53,12 @@
 //     displacement (s = u_i . (r_Pj - r_Pi), a slider's drive): holds s at
 //     its interfaces (the coordinate's points) rigidly or through an axial
 //     stiffness k_s (N/m), the drive train's.
+//   * Transmission (mech::Transmission, s_out = ratio s_in + c): its
+//     interfaces are the four ends of its two coordinates (the parts'
+//     TransmissionAttachment face sets, at their centroids); it holds
+//     ds_out - ratio ds_in (the relative rotations about z) rigidly or
+//     through a torsional stiffness on the output coordinate
+//     (TransmissionMember: a belt's spans, a gear pair's mesh).
 //   * Chain (mech::JointType::Chain, hinge on the ground): a tension-only
 //     axial member from the hinge to its tangent point T on the roller
 //     (mech::chain_tangent), k = EA / free length; it acts on the roller's
@@ -141,6 +147,23 @@ struct DriveHold {
   double axial_stiffness_n_per_m = kRigid;         // displacement drive: >= 0; kRigid: a constraint
 };
 
+// A transmission of the mechanism (mech::Transmission: s_out = ratio s_in +
+// c) in the assembly: its twist g = ds_out - ratio ds_in (rad, the
+// coordinates' relative rotations about z of its interfaces) is held
+// rigidly (transmissions not listed) or stores k g^2 / 2, k on the output
+// coordinate (docs/transmissions.md: a belt's k from its spans' EA, a gear
+// pair's from its mesh stiffness).
+struct TransmissionMember {
+  std::string transmission;
+  double torsional_stiffness_nm_per_rad = kRigid;  // >= 0
+  // A belt or chain (radius_m > 0: its output pulley's): the spans'
+  // tension from the output moment M, T0 +- M / (2 r) with both spans taut
+  // (preload T0 > 0: a span that would drop to zero goes slack, an Error
+  // naming the time and the span), or M / r on one span (T0 = 0, a chain).
+  double radius_m = 0.0;
+  double preload_n = 0.0;
+};
+
 // The guide of a prismatic joint whose body_i has a part (an elastic
 // guide); joints not listed take the defaults. Naming a joint that is not
 // prismatic, or whose guide is rigid, is an Error.
@@ -196,6 +219,7 @@ struct AssemblyOptions {
   std::vector<AssemblyPoint> points;
   std::vector<PinOption> pins;
   std::vector<SlideOption> slides;
+  std::vector<TransmissionMember> transmissions;
   // A revolute joint's bores more than this fraction of the model's
   // characteristic length apart in z get an elastic pin; closer: the rigid
   // tie (bit-identical to a model whose parts all sit in one plane).
@@ -307,6 +331,21 @@ struct DriveResult {
   double stretch_m = 0.0;       // change of s by the structure's deflection
 };
 
+// A transmission in one pose: the moment it applies on the output's body_j
+// (the multibody TransmissionFrame's moment_output_Nm where the structure is
+// determinate), its twist, and a belt's span tensions.
+struct TransmissionResult {
+  std::string transmission;
+  bool rigid = true;
+  double stiffness_nm_per_rad = kRigid;
+  double moment_output_nm = 0.0;
+  double twist_rad = 0.0;  // ds_out - ratio ds_in by the structure's deflection
+  // A belt (TransmissionMember::radius_m > 0): span 1 is the one a positive
+  // output moment tightens (N); zero without a radius.
+  bool has_spans = false;
+  double span_tension_n[2] = {0.0, 0.0};
+};
+
 // An elastic pin in one pose: its ends (world, the bores' reference points),
 // section, and what it carries (PinLoads: end loads on the bodies, shear and
 // bending at each end, sigma_b = 32 M/(pi d^3), tau = 16 V/(3 pi d^2), its
@@ -369,6 +408,7 @@ struct PoseSolution {
   std::vector<JointLoad> joints;   // model joint order
   std::vector<ChainResult> chains;
   std::vector<DriveResult> drives;  // motion drives, model order
+  std::vector<TransmissionResult> transmissions;  // model order
   std::vector<PinResult> pins;      // elastic pins, model joint order
   std::vector<PointResult> points;  // options.points order
   std::vector<BoreContactResult> contacts;  // pins in contact: part order, then the part's interface order
@@ -385,6 +425,7 @@ struct PoseSolution {
   const PointResult& point(const std::string& name) const;
   const ChainResult& chain(const std::string& name) const;
   const DriveResult& drive(const std::string& name) const;
+  const TransmissionResult& transmission(const std::string& name) const;
   const PinResult& pin(const std::string& joint) const;
   const BodyMotion& body(const std::string& name) const;
 };
