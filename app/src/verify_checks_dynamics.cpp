@@ -1,14 +1,17 @@
 // `kinetofem verify`: multibody dynamics (SUNDIALS IDAS and CVODES) against
-// the exact pendulum period and against the closed-form SPEC §1 mechanism.
-// Models, references and computations are those of
-// tests/verification/mechanisms/, from the verification library
-// (pendulum.hpp, lever_chain_multibody.hpp).
+// the exact pendulum period, against the closed-form SPEC §1 mechanism and
+// against SPEC §4's Q-manipulator with a belt (a transmission). Models,
+// references and computations are those of tests/verification/mechanisms/,
+// from the verification library (pendulum.hpp, lever_chain_multibody.hpp,
+// spec4_belt_arm.hpp).
 #include <vector>
 
 #include "kinetofem/app/verify.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/verification/lever_chain_multibody.hpp"
 #include "kinetofem/verification/pendulum.hpp"
+#include "kinetofem/verification/spec4_belt_arm.hpp"
 
 namespace kinetofem::app {
 
@@ -44,6 +47,20 @@ std::vector<CheckRow> lever_chain_multibody(const CheckContext&) {
                            agreement.worst_point_m, kv::kClosedFormTolerance, "required: 1e-9")};
 }
 
+std::vector<CheckRow> belt_q_manipulator(const CheckContext&) {
+  namespace s4 = kv::spec4;
+  std::vector<double> times;
+  for (int k = 0; k <= 200; ++k) times.push_back(s4::kBeltArmDuration * k / 200);
+  const mech::Results results = mech::run_kinematics(mech::MultibodySystem(s4::belt_arm_model()), times);
+  const s4::BeltArmAgreement agreement = s4::belt_arm_against_references(results);
+  return {compare_absolute("belt Q-manipulator (ratio -4), full turn: |H - H(P)|",
+                           "SPEC §4 H = l1 e(P) + l2 e((1 - i) P), i = 4", "m", 0.0, agreement.path_m,
+                           s4::kBeltArmTolerance * s4::kBeltArmL1, "required: 1e-9 of l1"),
+          compare_absolute("belt Q-manipulator: belt moment on link 2 - hand kinetostatics",
+                           "link 2 about A, docs/transmissions.md", "N*m", 0.0, agreement.moment_Nm,
+                           s4::kBeltArmTolerance * agreement.moment_scale_Nm, "required: 1e-9 of the peak moment")};
+}
+
 }  // namespace
 
 std::vector<Check> dynamics_checks() {
@@ -51,6 +68,7 @@ std::vector<Check> dynamics_checks() {
       {"dynamics.pendulum_period", "dynamics", true, pendulum_period},
       {"dynamics.idas_vs_cvodes", "dynamics", true, idas_vs_cvodes},
       {"dynamics.lever_chain_multibody", "dynamics", true, lever_chain_multibody},
+      {"dynamics.belt_q_manipulator", "dynamics", true, belt_q_manipulator},
   };
 }
 

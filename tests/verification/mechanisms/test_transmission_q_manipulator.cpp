@@ -2,7 +2,9 @@
 // 1 and 2 (l1 = l2 = 0.2 m) on revolute joints O and A, a belt from the
 // frame's pulley to link 2's pulley carried by link 1 (a Transmission with
 // ratio -4: the source's i = 4, phi_21 = -i phi_10), a payload at H, link 1
-// driven through a full turn by a polynomial 3-4-5 law, gravity -y.
+// driven through a full turn by a polynomial 3-4-5 law, gravity -y (the model
+// and the references: kinetofem/verification/spec4_belt_arm.hpp, shared with
+// `kinetofem verify`).
 // References (docs/transmissions.md):
 //   (a) H from mech::QManipulator's closed form, H(P) = l1 e(P) + l2 e((1 - i) P);
 //   (b) the belt's moment on link 2 from the hand kinetostatics of link 2 about
@@ -14,7 +16,6 @@
 // (1 DoF, the belt's row in the forward dynamics), IDAS against CVODES and
 // the energy balance.
 #include <cmath>
-#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -22,148 +23,48 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "kinetofem/mechanisms/motion_law_factory.hpp"
 #include "kinetofem/mechanisms/multibody/dynamics.hpp"
 #include "kinetofem/mechanisms/multibody/kinematics.hpp"
 #include "kinetofem/mechanisms/q_manipulator.hpp"
+#include "kinetofem/verification/spec4_belt_arm.hpp"
 
 namespace kinetofem::mech {
 namespace {
 
-constexpr double kL1 = 0.2, kL2 = 0.2;        // m, SPEC §4 / cases/mechanisms/q_manipulator_rose
-constexpr double kSourceRatio = 4.0;          // the source's i (phi_21 = -i phi_10)
-constexpr double kRatio = -kSourceRatio;      // ours (phi_21 = ratio phi_10)
-constexpr double kPulleyRadius = 0.02;        // m, link 2's pulley
-constexpr double kM1 = 2.0, kM2 = 1.5, kPayload = 3.0;  // kg
-const Eigen::Vector2d kCom2{0.1, 0.012};      // link 2's bare centre of mass (off its axis on purpose), m
-const double kJ1 = kM1 * kL1 * kL1 / 12.0, kJ2 = kM2 * kL2 * kL2 / 12.0;  // kg m^2
-const Eigen::Vector2d kGravity{0.0, -9.80665};
-constexpr double kDuration = 2.0;             // s
-
-std::shared_ptr<const MotionLaw> lever_law() {
-  MotionLawSpec spec;
-  spec.law = "polynomial345";
-  spec.stroke = 2.0 * std::numbers::pi;
-  spec.duration_s = kDuration;
-  return make_motion_law(spec);
-}
-
-MultibodyModel belt_q_manipulator() {
-  MultibodyModel m;
-  m.name = "belt Q-manipulator";
-  m.characteristic_length_m = kL1;
-  m.gravity = kGravity;
-  Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  Body link1;
-  link1.name = "link1";
-  link1.mass_kg = kM1;
-  link1.inertia_kgm2 = kJ1;
-  link1.com_body = {0.5 * kL1, 0.0};
-  link1.points["A"] = {kL1, 0.0};
-  Body link2;
-  link2.name = "link2";
-  link2.mass_kg = kM2;
-  link2.inertia_kgm2 = kJ2;
-  link2.com_body = kCom2;
-  link2.points["H"] = {kL2, 0.0};
-  link2.point_masses.push_back({"payload", kPayload, {kL2, 0.0}});
-  link2.pose = {kL1, 0.0, 0.0};
-  m.bodies = {ground, link1, link2};
-  m.joints.push_back(make_revolute("O", "ground", "origin", "link1", "origin"));
-  m.joints.push_back(make_revolute("A", "link1", "A", "link2", "origin"));
-  MotionDrive lever;
-  lever.name = "lever";
-  lever.coordinate = {CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}};
-  lever.law = lever_law();
-  m.motion_drives.push_back(lever);
-  Transmission belt;
-  belt.name = "belt";
-  belt.input = {CoordinateType::Angle, "ground", "origin", "link1", "origin", {1, 0}};
-  belt.output = {CoordinateType::Angle, "link1", "origin", "link2", "origin", {1, 0}};
-  belt.ratio = kRatio;
-  belt.radius_m = kPulleyRadius;
-  m.transmissions.push_back(belt);
-  return m;
-}
+namespace s4 = verification::spec4;
+constexpr double kL1 = s4::kBeltArmL1, kL2 = s4::kBeltArmL2;
+constexpr double kSourceRatio = s4::kBeltArmSourceRatio, kRatio = s4::kBeltArmRatio;
+constexpr double kPulleyRadius = s4::kBeltArmPulleyRadius;
 
 std::vector<double> output_times(int n) {
   std::vector<double> t;
-  for (int k = 0; k <= n; ++k) t.push_back(kDuration * k / n);
+  for (int k = 0; k <= n; ++k) t.push_back(s4::kBeltArmDuration * k / n);
   return t;
 }
 
-Eigen::Vector2d e(double angle) { return {std::cos(angle), std::sin(angle)}; }
-Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Hand kinetostatics of link 2 (docs/transmissions.md): the moment the belt
-// applies to link 2 at lever angle P(t) with its rates, from link 2's moment
-// equation about the pin A (its pin force has no moment there).
-double belt_moment_on_link2(const MotionState& lever) {
-  const double k2 = 1.0 + kRatio;  // theta_2 = (1 + ratio) P = (1 - i) P
-  const double th1 = lever.s, w1 = lever.s_dot, a1 = lever.s_ddot;
-  const double th2 = k2 * th1, w2 = k2 * w1, a2 = k2 * a1;
-  const Eigen::Vector2d acc_a = kL1 * (a1 * perp(e(th1)) - w1 * w1 * e(th1));
-  const Eigen::Matrix2d rot = Eigen::Rotation2Dd(th2).toRotationMatrix();
-  double moment = kJ2 * a2;
-  for (const auto& [mass, at_body] : {std::pair{kM2, kCom2}, std::pair{kPayload, Eigen::Vector2d(kL2, 0.0)}}) {
-    const Eigen::Vector2d rho = rot * at_body;
-    const Eigen::Vector2d acc = acc_a + a2 * perp(rho) - w2 * w2 * rho;
-    moment += cross(rho, mass * (acc - kGravity));
-  }
-  return moment;
-}
-
-struct Errors {
-  double path_m = 0.0, moment_nm = 0.0, force_n = 0.0, input_moment_nm = 0.0, row_rad = 0.0;
-  double moment_scale_nm = 0.0;
-};
-
-Errors compare(const Results& results) {
-  const QManipulator closed_form = make_two_link_q_manipulator(kL1, kL2, kSourceRatio);
-  const auto law = lever_law();
-  Errors err;
-  for (const Frame& f : results.frames) {
-    const double p = f.drives.at(0).s;
-    const BodyFrame& link2 = f.bodies.at(2);
-    const Eigen::Vector2d h = link2.q.head<2>() + Eigen::Rotation2Dd(link2.q.z()) * Eigen::Vector2d(kL2, 0.0);
-    err.path_m = std::max(err.path_m, (h - closed_form.point_h(p).p).norm());
-    const TransmissionFrame& belt = f.transmissions.at(0);
-    const double reference = belt_moment_on_link2(law->at(f.t));
-    err.moment_scale_nm = std::max(err.moment_scale_nm, std::abs(reference));
-    err.moment_nm = std::max(err.moment_nm, std::abs(belt.moment_output_Nm - reference));
-    err.force_n = std::max(err.force_n, std::abs(belt.force_N - reference / kPulleyRadius));
-    err.input_moment_nm = std::max(err.input_moment_nm, std::abs(belt.moment_input_Nm + kRatio * reference));
-    err.row_rad = std::max(err.row_rad, std::abs(belt.s_out - kRatio * belt.s_in));
-  }
-  return err;
-}
-
 TEST(TransmissionQManipulator, PathOfHIsSpec4sRoseAndTheBeltMomentIsTheHandKinetostatics) {
-  const MultibodySystem system(belt_q_manipulator());
+  const MultibodySystem system(s4::belt_arm_model());
   for (const bool integrated : {false, true}) {
     const Results results =
         integrated ? simulate_ggl(system, output_times(200)) : run_kinematics(system, output_times(200));
-    const Errors err = compare(results);
+    const s4::BeltArmAgreement err = s4::belt_arm_against_references(results);
     fmt::print("belt Q-manipulator ({}): |H - H_closed| {:.3e} m ({:.3e} l1); belt moment error {:.3e} N m of "
                "{:.4g} N m, pull error {:.3e} N; drift {:.3e} m ({:.3e} l1); equilibrium {:.3e}, energy {:.3e}\n",
-               results.summary.method, err.path_m, err.path_m / kL1, err.moment_nm, err.moment_scale_nm, err.force_n,
+               results.summary.method, err.path_m, err.path_m / kL1, err.moment_Nm, err.moment_scale_Nm, err.force_N,
                results.summary.max_drift_position_m, results.summary.max_drift_relative,
                results.summary.max_equilibrium_residual, results.summary.energy_balance_error);
     ASSERT_EQ(results.frames.size(), 201u);
     // (a) Reference: SPEC §4's H(P) (mech::QManipulator, i = 4) at the lever
     // angle of each frame; the multibody path differs by the constraints'
-    // residual only: 1e-9 of l1.
-    EXPECT_LT(err.path_m, 1e-9 * kL1);
+    // residual only: 1e-9 of l1 (s4::kBeltArmTolerance).
+    EXPECT_LT(err.path_m, s4::kBeltArmTolerance * kL1);
     // (b) Reference: the hand kinetostatics of link 2 about A with the law's
-    // P, P', P'' (belt_moment_on_link2): 1e-9 of the largest moment; the pull
-    // is moment / r (1e-9 of the largest pull), the input's moment -i times
-    // the output's.
-    EXPECT_LT(err.moment_nm, 1e-9 * err.moment_scale_nm);
-    EXPECT_LT(err.force_n, 1e-9 * err.moment_scale_nm / kPulleyRadius);
-    EXPECT_LT(err.input_moment_nm, 1e-9 * std::abs(kRatio) * err.moment_scale_nm);
+    // P, P', P'' (s4::belt_arm_moment_on_link2): 1e-9 of the largest moment;
+    // the pull is moment / r (1e-9 of the largest pull), the input's moment
+    // -ratio times the output's.
+    EXPECT_LT(err.moment_Nm, s4::kBeltArmTolerance * err.moment_scale_Nm);
+    EXPECT_LT(err.force_N, s4::kBeltArmTolerance * err.moment_scale_Nm / kPulleyRadius);
+    EXPECT_LT(err.input_moment_Nm, s4::kBeltArmTolerance * std::abs(kRatio) * err.moment_scale_Nm);
     // (c) Reference: the constraints hold, the belt's row (phi_21 = -4 phi_10)
     // among them: drift below 1e-8 of the link length.
     EXPECT_LT(results.summary.max_drift_position_m, 1e-8 * kL1);
@@ -184,7 +85,7 @@ TEST(TransmissionQManipulator, PathOfHIsSpec4sRoseAndTheBeltMomentIsTheHandKinet
 // The source's i21 = 2, i32 = 1.5 are our ratios -2 and -1.5.
 TEST(TransmissionQManipulator, ThreeLinksWithTwoBeltsTraceTheClosedFormOfII24) {
   const double l3 = 0.12, i21 = 2.0, i32 = 1.5;
-  MultibodyModel m = belt_q_manipulator();
+  MultibodyModel m = s4::belt_arm_model();
   m.transmissions[0].ratio = -i21;
   m.bodies[2].point_masses.clear();
   m.bodies[2].points["B"] = {kL2, 0.0};
@@ -229,7 +130,7 @@ TEST(TransmissionQManipulator, ThreeLinksWithTwoBeltsTraceTheClosedFormOfII24) {
 // conservative run, the belt does no work: 1e-7 of the energy at the
 // integrators' tolerances, as the slider-crank's, test_dynamics_slider_crank.cpp).
 TEST(TransmissionQManipulator, FreeSwingUnderGravityAgreesOnBothPathsAndConservesEnergy) {
-  MultibodyModel m = belt_q_manipulator();
+  MultibodyModel m = s4::belt_arm_model();
   m.motion_drives.clear();
   const MultibodySystem system(m);
   const std::vector<double> times = output_times(100);
