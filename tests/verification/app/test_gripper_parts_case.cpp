@@ -161,6 +161,23 @@ TEST(GripperPartsCase, IndexFromTheModelsVelocitiesIsEquationSix) {
               "max |model - eq. (6)| = %.3g, max |upper - lower| = %.3g\n",
               g.sigma(), g.gamma_r(), results.frames.size(), phi_of(results.frames.front()) / kDeg,
               phi_of(results.frames.back()) / kDeg, max_error, max_asymmetry);
+
+  // And with the case's own law, at every output time where the slider moves.
+  const GripperCase as_is = read_gripper_case();
+  const mech::Results own = mech::run_kinematics(mech::MultibodySystem(as_is.model), as_is.times);
+  double max_error_own = 0;
+  std::size_t moving = 0;
+  for (const mech::Frame& f : own.frames) {
+    if (std::abs(f.drives.at(0).s_dot) < 1e-9) continue;  // the ends, at rest
+    ++moving;
+    const double u_model = f.drives.at(0).s_dot / jaw_speed_along_clamp(as_is.model, f, "lower");
+    const double u_eq6 = mech::gripper_index_offset(phi_of(f), as_is.sigma(), as_is.gamma_r());
+    max_error_own = std::max(max_error_own, std::abs(u_model - u_eq6));
+    EXPECT_NEAR(u_model, u_eq6, 1e-9) << "case's law, t = " << f.t << " s";
+  }
+  EXPECT_EQ(moving, own.frames.size() - 2);
+  std::printf("gripper_parts: the case's own law (polynomial 3-4-5): %zu output times with the slider moving, max |model - "
+              "eq. (6)| = %.3g\n", moving, max_error_own);
 }
 
 TEST(GripperPartsCase, QuasiStaticClampingForceIsHalfTheDriveForceTimesTheIndex) {
