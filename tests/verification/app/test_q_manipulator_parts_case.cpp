@@ -1,11 +1,16 @@
 // The bundled SPEC §4 Q-manipulator with FE parts (cases/q_manipulator_parts)
 // through the whole chain: the case file, the parametric .geo parts, the
 // dynamics with the belt, the transmission's loads on both links and their
-// stress over the motion, the results file.
+// stress over the motion, the elastic assembly with the belt as a torsional
+// member, the results file.
 // References: H against SPEC §4's closed form (mech::QManipulator, the
 // source's i = 4) at every output time, 1e-9 of l1; the belt's moments
 // in the results file equal the frames' (the write is exact); every part's
-// loads close (the stress stage refuses them otherwise, 1e-6 of their size).
+// loads close (the stress stage refuses them otherwise, 1e-6 of their size);
+// in the assembly the belt's largest moment is the dynamics' (1e-6, the
+// assembly's own check) and its twist that moment over the hand stiffness of
+// the case's chain, k = EA r^2 / b (one span, no preload; EA the ISO 606
+// 08B-1 default 5.0e6 N, r = 20 mm, b = 200 mm): 1e-9 relative.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,6 +55,15 @@ TEST(QManipulatorPartsCase, HTracesSpec4sRoseAndTheBeltLoadsBothParts) {
     EXPECT_GT(part.peak_von_mises_pa, 0.0) << part.body;
     EXPECT_LT(part.worst_equilibrium_residual, 1e-6) << part.body;  // the transmission's moments included
   }
+
+  ASSERT_TRUE(run.assembly.has_value());
+  ASSERT_EQ(run.assembly->transmissions.size(), 1u);
+  const auto& belt = run.assembly->transmissions[0];
+  const double k_hand = 5.0e6 * 0.02 * 0.02 / 0.2;  // N m/rad
+  EXPECT_NEAR(belt.max_moment_nm, peak_moment, 1e-6 * peak_moment);
+  EXPECT_NEAR(belt.max_twist_rad, belt.max_moment_nm / k_hand, 1e-9 * belt.max_moment_nm / k_hand);
+  ASSERT_EQ(run.assembly->points.size(), 1u);
+  EXPECT_GT(run.assembly->points[0].max_displacement_m, 0.0);
 
   const auto file = post::ResultsFile::open(run.results_file);
   const auto force = file.read_history("transmission.belt.force");
