@@ -462,6 +462,17 @@ LinkageRun run_linkage(const CaseFile& c, const RunOptions& options) {
                                  m.transmissions.size(), m.force_drives.size(), m.springs.size(), c.count("part")));
   run_case.parts = read_parts(c, m);
   for (auto& part : run_case.parts) part.file_options.trusted = options.trust_part_files;
+  // An elastic guide: the per-part stress spreads the slider's load over the
+  // whole guide face (a statically equivalent coupling, not where the slider
+  // is); only the assembly places it at the slider. Said, not silent.
+  for (std::size_t k = 0; k < c.count("joint"); ++k)
+    if (c.text_value("joint[].type", k) == "prismatic" && c.has("joint[].face_i", k))
+      log.info("note: joint '{}': the per-part stress of body '{}' spreads the slider's load over its whole face set "
+               "'{}' (statically equivalent, not at the slider); {} places it where the slider is, over its contact "
+               "length",
+               c.text_value("joint[].name", k), c.text_value("joint[].body_i", k), c.text_value("joint[].face_i", k),
+               c.boolean("assembly.enabled") ? "the elastic assembly (its fields assembly.<body>)"
+                                             : "the elastic assembly (assembly.enabled = true)");
   run_case.times = mech::equally_spaced_times(c.number("simulation.duration_s"), c.integer("simulation.output_times"));
   const std::string method = c.text_value("simulation.method");
   run_case.dynamics.method = method == "kinematic" ? pipeline::DynamicsMethod::Kinematic
