@@ -75,10 +75,19 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/test
 #   LinkLoads.BlockSolveOverAllTimes... (34 s): a block solve against one solve
 #     per column, equal to round-off; block solves run instrumented in every
 #     manipulator job (the load patterns), LinkLoads.* keeps its other tests.
+# Also left out (2026-12-04): the bundled SPEC §4/§6 and slider-crank cases run
+# whole (GripperPartsCase.ThroughTheWholeChain..., 16 s in release: eight Gmsh
+# parts, the assembly and the vibration; SliderCrankPartsAssembly.*, 5 s: two
+# STEP parts through every stage; QManipulatorPartsCase.*, 3 s). Their
+# stages run instrumented on smaller models: the slider and transmission
+# members in ElasticAssemblySlider.* and ElasticAssemblyTransmission.*, the
+# transmission's loads in LinkLoads.*, the gripper's assembly in
+# GripperAssembly.* (kept), the stages in VibrationOverMotion.* and the
+# fatigue tests.
 # Every robustness test, every unit test of parsing, I/O and memory handling,
 # and the fuzz targets still run instrumented.
 # Keeps CI under its time limit; KINETOFEM_SANITIZER_SKIP="" runs them too.
-skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.|Superposition\.(LeverManipulator|FieldsAtEveryKth|FieldTimes|LeverChainManipulator)|Types/NodeGraphOrderingTest\.|AssemblyModes\.|ManipulatorJob\.VibrationKeys|ManipulatorJob\.FactorsThatDoNotFitTogether|FatigueSuperposition\.LeverManipulator|CantileverModes\.FirstThree|Verify\.QuickSuite|AmgSolver\.Tet10Cantilever|VibrationOverMotion\.(WithoutDamping|ASlowMotionIsQuasiStatic)|QuadraticElements/CantileverTest\.|Spec4QManipulator\.IsokinematicPair|LinkLoads\.BlockSolveOverAllTimes)'}
+skip=${KINETOFEM_SANITIZER_SKIP-'^(ManipulatorPresets\.|ManipulatorJob\.FactorAboveTheLimit|NoSourceTree\.CopiedProgramPassesVerifyQuick|ElasticAssemblyCost\.|RigidBoreCost\.|LinkageAssembly\.|KillDuringRun\.ManipulatorKilledWhileWriting|LoadTransferVerification\.AcceleratedLinkBalanced|LinkageParts\.BundledStepCase|postproc\.XdmfParaView\.|Superposition\.(LeverManipulator|FieldsAtEveryKth|FieldTimes|LeverChainManipulator)|Types/NodeGraphOrderingTest\.|AssemblyModes\.|ManipulatorJob\.VibrationKeys|ManipulatorJob\.FactorsThatDoNotFitTogether|FatigueSuperposition\.LeverManipulator|CantileverModes\.FirstThree|Verify\.QuickSuite|AmgSolver\.Tet10Cantilever|VibrationOverMotion\.(WithoutDamping|ASlowMotionIsQuasiStatic)|QuadraticElements/CantileverTest\.|Spec4QManipulator\.IsokinematicPair|LinkLoads\.BlockSolveOverAllTimes|GripperPartsCase\.ThroughTheWholeChain|SliderCrankPartsAssembly\.|QManipulatorPartsCase\.)'}
 exclude=()
 [[ -n $skip ]] && exclude=(-E "$skip")
 status=0
