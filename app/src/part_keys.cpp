@@ -369,8 +369,6 @@ std::vector<pipeline::PartSpec> read_parts(const CaseFile& c, const mech::Multib
       const std::string p = std::string(table) + "[].";
       const std::string what = fmt::format("drive '{}'", d.name);
       const std::string fi = face(p + "face_i", k, d.coordinate.body_i, what), fj = face(p + "face_j", k, d.coordinate.body_j, what);
-      if ((!fi.empty() || !fj.empty()) && d.coordinate.type != mech::CoordinateType::Angle)
-        fail("{}: drive '{}' acts on a displacement; only torque (angle) drives can load a part", c.where(p + "name", k), d.name);
       if (!fi.empty()) part_for(d.coordinate.body_i)->attachments.drives.push_back({d.name, fi});
       if (!fj.empty()) part_for(d.coordinate.body_j)->attachments.drives.push_back({d.name, fj});
     }

@@ -141,6 +141,19 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     m.position_body.z() = face_z(m.coupling);
     masses_.push_back(std::move(m));
   }
+  auto body_of = [&](const std::string& name) {
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == name) return int(b);
+    fail("link '{}': the mechanism has no body '{}'", link.body, name);
+  };
+  auto point_of = [&](int b, const std::string& point) -> Eigen::Vector2d {
+    if (point == "origin") return Eigen::Vector2d::Zero();
+    const auto& points = model.bodies[size_t(b)].points;
+    const auto it = points.find(point);
+    require(it != points.end(), "link '{}': body '{}' has no point '{}'", link.body, model.bodies[size_t(b)].name,
+            point);
+    return it->second;
+  };
   for (const auto& attachment : link.drives) {
     Drive d;
     d.name = attachment.drive;
@@ -161,12 +174,20 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
       ++index;
     }
     require(coordinate != nullptr, "link '{}': the mechanism has no drive '{}'", link.body, d.name);
-    require(coordinate->type == mech::CoordinateType::Angle,
-            "link '{}': drive '{}' is not a torque drive", link.body, d.name);
     require(coordinate->body_i == link.body || coordinate->body_j == link.body,
             "link '{}': drive '{}' does not act on it", link.body, d.name);
     d.on_j = coordinate->body_j == link.body;
     d.coupling = coupling_on(attachment.face_set);
+    if (coordinate->type == mech::CoordinateType::Displacement) {
+      const double length = coordinate->axis_i.norm();
+      require(length > 0 && std::isfinite(length), "link '{}': drive '{}': its axis has zero length", link.body, d.name);
+      d.displacement = true;
+      d.axis_i = coordinate->axis_i / length;
+      d.body_i = body_of(coordinate->body_i);
+      d.body_j = body_of(coordinate->body_j);
+      d.point_i = point_of(d.body_i, coordinate->point_i);
+      d.point_j = point_of(d.body_j, coordinate->point_j);
+    }
     drives_.push_back(std::move(d));
   }
   for (const auto& attachment : link.transmissions) {
@@ -189,19 +210,6 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     t.coupling = coupling_on(attachment.face_set);
     transmissions_.push_back(std::move(t));
   }
-  auto body_of = [&](const std::string& name) {
-    for (size_t b = 0; b < model.bodies.size(); ++b)
-      if (model.bodies[b].name == name) return int(b);
-    fail("link '{}': the mechanism has no body '{}'", link.body, name);
-  };
-  auto point_of = [&](int b, const std::string& point) -> Eigen::Vector2d {
-    if (point == "origin") return Eigen::Vector2d::Zero();
-    const auto& points = model.bodies[size_t(b)].points;
-    const auto it = points.find(point);
-    require(it != points.end(), "link '{}': body '{}' has no point '{}'", link.body, model.bodies[size_t(b)].name,
-            point);
-    return it->second;
-  };
   model_springs_ = model.springs;
   for (const auto& sp : model.springs) {
     spring_body_i_.push_back(body_of(sp.body_i));
@@ -304,9 +312,29 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
   }
   for (const auto& d : drives_) {
     const double effort = frame.drives.at(size_t(d.drive_index)).effort;
-    const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
-    through(d.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(d.coupling)]->centroid());
-    magnitude += std::abs(effort) / length_scale_;
+    if (!d.displacement) {
+      const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
+      through(d.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(d.coupling)]->centroid());
+      magnitude += std::abs(effort) / length_scale_;
+      continue;
+    }
+    // s = t . (r_Pj - r_Pi), t = axis_i turned with body_i: the effort pushes
+    // body_j along t at P_j and body_i back at P_i, and, since t turns with
+    // body_i, adds the couple effort (t x (P_j - P_i)) . e_z on body_i (the
+    // generalised force of d s / d theta_i); the pair is self-equilibrated.
+    auto world = [&](int b, const Eigen::Vector2d& p) {
+      const mech::BodyFrame& bf = frame.bodies.at(size_t(b));
+      return Eigen::Vector2d(bf.q.head<2>() + Eigen::Rotation2Dd(bf.q.z()) * p);
+    };
+    const Eigen::Vector2d t = Eigen::Rotation2Dd(frame.bodies.at(size_t(d.body_i)).q.z()) * d.axis_i;
+    const Eigen::Vector2d span = world(d.body_j, d.point_j) - world(d.body_i, d.point_i);
+    const double sign = d.on_j ? 1.0 : -1.0;
+    const Eigen::Vector3d force_world(sign * effort * t.x(), sign * effort * t.y(), 0.0);
+    const double couple = d.on_j ? 0.0 : effort * (t.x() * span.y() - t.y() * span.x());
+    Eigen::Vector3d point = lift(d.on_j ? d.point_j : d.point_i);
+    point.z() = couplings_[size_t(d.coupling)]->centroid().z();
+    through(d.coupling, R_T * force_world, Eigen::Vector3d(0, 0, couple), point);
+    magnitude += std::abs(effort) + std::abs(couple) / length_scale_;
   }
   for (const auto& tr : transmissions_) {
     const mech::TransmissionFrame& tf = frame.transmissions.at(size_t(tr.transmission_index));

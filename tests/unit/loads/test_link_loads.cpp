@@ -248,5 +248,42 @@ TEST(LinkLoads, TransmissionMomentsKeepEveryLinkInEquilibriumAndSuperpose) {
   EXPECT_THROW(LinkLoads(wrong_side, model), Error);
 }
 
+// The double pendulum with its second drive a linear actuator between the
+// links: s = t . (r_B2(link2) - r_origin(link1)), t = link1's y axis, the
+// offset across link1 of link2's far bore (s from 0 to -0.1 m: link2 turns
+// back by asin(0.1 / 0.24)). Its force enters link2 at bore_2 along t and
+// link1 at bore_1 against it, with the couple of t turning with link1.
+// Reference: d'Alembert equilibrium of each link, 1e-9 as for the torque
+// drives above (without the couple link1 would be out of balance by
+// effort x (t x span)); the patterns' combination equals loads_at to 1e-12.
+TEST(LinkLoads, ALinearActuatorsForceAndCoupleKeepEveryLinkInEquilibrium) {
+  mech::MultibodyModel model = double_pendulum();
+  mech::MotionDrive actuator;
+  actuator.name = "A2";
+  actuator.coordinate = {mech::CoordinateType::Displacement, "link1", "origin", "link2", "B2", {0.0, 1.0}};
+  actuator.law = std::make_shared<mech::Polynomial345Law>(-0.1, 0.5);
+  model.motion_drives.back() = actuator;
+  const mech::Results results = mech::run_kinematics(mech::MultibodySystem(model), times(10));
+  LinkDefinition link1{"link1", &link_model(), {{"J1", "bore_1"}, {"J2", "bore_2"}}, {}, {{"D1", "bore_1"}, {"A2", "bore_1"}}};
+  LinkDefinition link2{"link2", &link_model(), {{"J2", "bore_1"}}, {{"tip", "bore_2"}}, {{"A2", "bore_2"}}};
+  const LinkLoads loads1(link1, model), loads2(link2, model);
+  double worst = 0.0, worst_pattern = 0.0, peak = 0.0;
+  for (const auto& frame : results.frames) {
+    peak = std::max(peak, std::abs(frame.drives[1].effort));
+    for (const LinkLoads* loads : {&loads1, &loads2}) {
+      const LinkLoadResult r = loads->loads_at(frame);
+      worst = std::max(worst, r.equilibrium_residual);
+      const Eigen::VectorXd combined = loads->pattern_forces() * loads->coefficients_at(frame).coefficients;
+      worst_pattern = std::max(worst_pattern, (combined - r.forces).cwiseAbs().maxCoeff() / r.forces.cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_GT(peak, 10.0);  // the actuator carries link2 and its 3 kg tip (N): not vacuous
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(worst_pattern, 1e-12);
+  LinkDefinition without = link1;
+  without.drives.pop_back();
+  EXPECT_THROW(LinkLoads(without, model).loads_at(results.frames[5]), Error);
+}
+
 }  // namespace
 }  // namespace kinetofem::loads

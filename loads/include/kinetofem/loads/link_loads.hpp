@@ -108,8 +108,11 @@ struct PointMassAttachment {
   std::string face_set;    // mount face of the mesh
 };
 
-// A drive (motor) whose torque enters the link through a face set (the
-// shaft's bore), by a distributing coupling.
+// A drive whose effort enters the link through a face set by a distributing
+// coupling: a torque (an angle drive: the motor shaft's bore), or a force
+// along the drive's axis at the coordinate's point on this link (a
+// displacement drive: a linear actuator's mount; on its body_i also the
+// couple of the axis turning with that body).
 struct DriveAttachment {
   std::string drive;     // name in mech::MultibodyModel::motion_drives / force_drives
   std::string face_set;
@@ -238,6 +241,12 @@ class LinkLoads {
     int drive_index = -1;
     bool on_j = true;  // the effort acts on body_j (+), reacts on body_i (-)
     int coupling = -1;
+    // A displacement drive (a linear actuator): its axis in body_i's frame
+    // (unit), its bodies and points (their frames); else a torque.
+    bool displacement = false;
+    Eigen::Vector2d axis_i = Eigen::Vector2d::UnitX();
+    int body_i = -1, body_j = -1;
+    Eigen::Vector2d point_i = Eigen::Vector2d::Zero(), point_j = Eigen::Vector2d::Zero();
   };
   struct TransmissionLoad {
     std::string name;
