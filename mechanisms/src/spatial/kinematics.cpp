@@ -1,0 +1,96 @@
+#include "kinetofem/mechanisms/spatial/kinematics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "kinetofem/core/error.hpp"
+
+namespace kinetofem::mech::spatial {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+// The joint or drive with the largest residual, for error messages.
+std::string worst_block(const System& system, const VectorXd& q, double t) {
+  const VectorXd phi = system.phi(q, t);
+  std::string name = "(norm rows)";
+  double worst = system.norm_phi(q).size() ? system.norm_phi(q).cwiseAbs().maxCoeff() : 0.0;
+  for (const ConstraintBlock& blk : system.blocks()) {
+    const double r = phi.segment(blk.first_row, blk.rows).cwiseAbs().maxCoeff();
+    if (r > worst) {
+      worst = r;
+      name = blk.name;
+    }
+  }
+  return fmt::format("'{}' (residual {:.3e})", name, worst);
+}
+
+}  // namespace
+
+VectorXd assemble(const System& system, VectorXd q, double t, const KinematicOptions& options) {
+  const int m = system.n_constraints(), nb = system.n_moving(), n = system.n_positions();
+  const double tol = options.tolerance * system.characteristic_length();
+  for (int it = 0; it < options.max_iterations; ++it) {
+    if (system.position_drift_m(q, t) <= tol) return q;
+    MatrixXd jac(m + nb, n);
+    jac << system.jacobian_q(q, t), system.norm_jacobian(q);
+    VectorXd res(m + nb);
+    res << system.phi(q, t), system.norm_phi(q);
+    Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(jac);
+    q -= cod.solve(res);
+  }
+  if (system.position_drift_m(q, t) <= tol) return q;
+  fail("spatial model '{}' cannot be assembled at t = {} s: after {} Newton iterations the largest residual is at {}",
+       system.model().name, t, options.max_iterations, worst_block(system, q, t));
+}
+
+VectorXd solve_velocities(const System& system, const VectorXd& q, double t, const VectorXd& v_guess) {
+  const int n = system.n_velocities(), m = system.n_constraints();
+  const MatrixXd mass = system.mass_matrix(), pi = system.jacobian_v(q, t);
+  MatrixXd kkt = MatrixXd::Zero(n + m, n + m);
+  kkt.topLeftCorner(n, n) = mass;
+  kkt.topRightCorner(n, m) = pi.transpose();
+  kkt.bottomLeftCorner(m, n) = pi;
+  VectorXd rhs(n + m);
+  rhs << mass * v_guess, system.nu(q, t);
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;
+  cod.setThreshold(1e-10);
+  cod.compute(kkt);
+  return cod.solve(rhs).head(n);
+}
+
+int degrees_of_freedom(const System& system, const VectorXd& q, double t) {
+  const MatrixXd pi = system.jacobian_v(q, t);
+  if (pi.rows() == 0) return system.n_velocities();
+  Eigen::ColPivHouseholderQR<MatrixXd> qr(pi.transpose());
+  qr.setThreshold(1e-10);
+  return system.n_velocities() - static_cast<int>(qr.rank());
+}
+
+Results run_kinematics(const System& system, const std::vector<double>& times, const KinematicOptions& options) {
+  require(!times.empty(), "spatial kinematics: no output times");
+  VectorXd q = assemble(system, system.initial_positions(), times.front(), options);
+  const int dof = degrees_of_freedom(system, q, times.front());
+  require(dof == 0, "spatial kinematics of '{}': the mechanism has {} degrees of freedom at t = {} s, needs 0 (drive them)",
+          system.model().name, dof, times.front());
+  VectorXd v = solve_velocities(system, q, times.front(), VectorXd::Zero(system.n_velocities()));
+  Results results;
+  results.summary.method = "kinematic";
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (k > 0) {
+      const double dt = times[k] - times[k - 1];
+      require(dt > 0.0, "spatial kinematics: output times must increase, times[{}] = {}", k, times[k]);
+      q = assemble(system, q + dt * system.position_rates(q, v), times[k], options);
+      v = solve_velocities(system, q, times[k], v);
+    }
+    results.frames.push_back(make_frame(system, times[k], q, v));
+  }
+  summarize(system, results);
+  return results;
+}
+
+}  // namespace kinetofem::mech::spatial
