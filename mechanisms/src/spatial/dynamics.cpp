@@ -113,8 +113,14 @@ Results simulate_ggl(const System& system, const std::vector<double>& times, con
   Results results;
   results.summary.method = "IDAS GGL index-2";
   Frame first = make_frame(system, t0, q0, v0);
-  const VectorXd lambda0 = first.lambda(kept);
   const VectorXd v_dot0 = first.v_dot;
+  // The kept rows' multipliers carry the whole constraint load M v' - (Q - h):
+  // least squares on Pi_kept^T (exact, v' being consistent), not the
+  // minimum-norm set over all rows restricted to the kept ones.
+  const MatrixXd pi_kept = pi0(kept, Eigen::all);
+  const VectorXd load0 = system.forces(q0, v0, t0) - system.mass_matrix() * v_dot0;
+  const VectorXd lambda0 =
+      kept.empty() ? VectorXd() : VectorXd(pi_kept.transpose().colPivHouseholderQr().solve(load0));
   results.frames.push_back(std::move(first));
 
   sun::Context ctx;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -14,19 +17,23 @@ using Eigen::VectorXd;
 
 namespace {
 
-// The joint or drive with the largest residual, for error messages.
-std::string worst_block(const System& system, const VectorXd& q, double t) {
+// The joints and drives left with a residual above the tolerance, largest
+// first (a least-squares Newton step spreads an impossible closure over all
+// the rows that share it, so one name alone could mislead).
+std::string open_blocks(const System& system, const VectorXd& q, double t, double tolerance) {
   const VectorXd phi = system.phi(q, t);
-  std::string name = "(norm rows)";
-  double worst = system.norm_phi(q).size() ? system.norm_phi(q).cwiseAbs().maxCoeff() : 0.0;
+  std::vector<std::pair<double, std::string>> open;
+  const VectorXd norms = system.norm_phi(q);
+  if (norms.size() && norms.cwiseAbs().maxCoeff() > tolerance)
+    open.emplace_back(norms.cwiseAbs().maxCoeff(), "(Euler-parameter norms)");
   for (const ConstraintBlock& blk : system.blocks()) {
     const double r = phi.segment(blk.first_row, blk.rows).cwiseAbs().maxCoeff();
-    if (r > worst) {
-      worst = r;
-      name = blk.name;
-    }
+    if (r > tolerance) open.emplace_back(r, blk.name);
   }
-  return fmt::format("'{}' (residual {:.3e})", name, worst);
+  std::sort(open.begin(), open.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string text;
+  for (const auto& [r, name] : open) text += fmt::format("{}'{}' (residual {:.3e})", text.empty() ? "" : ", ", name, r);
+  return text;
 }
 
 }  // namespace
@@ -44,8 +51,8 @@ VectorXd assemble(const System& system, VectorXd q, double t, const KinematicOpt
     q -= cod.solve(res);
   }
   if (system.position_drift_m(q, t) <= tol) return q;
-  fail("spatial model '{}' cannot be assembled at t = {} s: after {} Newton iterations the largest residual is at {}",
-       system.model().name, t, options.max_iterations, worst_block(system, q, t));
+  fail("spatial model '{}' cannot be assembled at t = {} s: after {} Newton iterations these stay open: {}",
+       system.model().name, t, options.max_iterations, open_blocks(system, q, t, tol));
 }
 
 VectorXd solve_velocities(const System& system, const VectorXd& q, double t, const VectorXd& v_guess) {

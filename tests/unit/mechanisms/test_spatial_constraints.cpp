@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
 #include "kinetofem/mechanisms/spatial/rotation.hpp"
 #include "kinetofem/mechanisms/spatial/system.hpp"
@@ -225,6 +226,118 @@ TEST(SpatialRedundancy, PlanarFourBarOfRevolutesReportsThreeRedundantRows) {
     for (const JointState& j : f.joints) EXPECT_NEAR(j.on_j.force_world.z(), 0.0, 1e-9) << j.name;
   }
   std::printf("%s", res.format_checks().c_str());
+}
+
+// A point mass with rotary inertia moves the centre of mass and adds
+// J_pm + m_pm (|d|^2 I - d d^T) about it; the bare body's own inertia shifts
+// likewise (parallel-axis rule, body axes).
+TEST(SpatialModel, PointMassWithRotaryInertiaFollowsTheParallelAxisRule) {
+  Model m;
+  Body ground;
+  ground.name = "ground";
+  ground.fixed = true;
+  Body b;
+  b.name = "arm";
+  b.mass_kg = 3.0;
+  b.inertia_kgm2 = Vector3d(0.1, 0.2, 0.3).asDiagonal();
+  b.com_body = {0.5, 0.0, 0.0};
+  PointMass pm;
+  pm.name = "casting";
+  pm.mass_kg = 1.0;
+  pm.position_body = {1.3, 0.4, 0.0};
+  pm.inertia_kgm2 = Vector3d(0.01, 0.02, 0.03).asDiagonal();
+  b.point_masses = {pm};
+  m.bodies = {ground, b};
+  const System sys(m);
+  const EffectiveBody& e = sys.effective(1);
+  const Vector3d c = (3.0 * Vector3d(0.5, 0, 0) + 1.0 * Vector3d(1.3, 0.4, 0)) / 4.0;
+  const auto shift = [](double mass, const Vector3d& d) {
+    return Eigen::Matrix3d(mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
+  };
+  const Eigen::Matrix3d expected = b.inertia_kgm2 + shift(3.0, Vector3d(0.5, 0, 0) - c) + pm.inertia_kgm2 +
+                                   shift(1.0, pm.position_body - c);
+  EXPECT_DOUBLE_EQ(e.mass_kg, 4.0);
+  // Reference: the parallel-axis rule written out above; round-off.
+  EXPECT_LT((e.com_body - c).norm(), 1e-15);
+  EXPECT_LT((e.inertia_kgm2 - expected).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+// The generalised force of a point force does the power F . v_P at any
+// velocity, and the gyroscopic term does none (w . (w x J w) = 0).
+TEST(SpatialModel, PointForceAndGyroscopicTermsHaveTheRightPower) {
+  Model m = two_body_model(JointType::Spherical);
+  m.gravity.setZero();
+  PointForce f;
+  f.name = "load";
+  f.body = "b2";
+  f.point = "start";
+  f.force_world = {3.0, -2.0, 5.0};
+  m.point_forces = {f};
+  const System sys(m);
+  const VectorXd q = sys.initial_positions();
+  VectorXd v(sys.n_velocities());
+  v << 0.3, -0.2, 0.5, 1.1, -0.7, 0.4, -0.6, 0.8, 0.2, 2.0, 0.5, -1.5;
+  const int b2 = sys.body_index("b2");
+  const Vector3d s = sys.named_point(b2, "start") - sys.effective(b2).com_body;
+  const Vector3d v_point = sys.com_velocity(b2, v) + sys.rotation(b2, q) * sys.angular_velocity_body(b2, v).cross(s);
+  // Reference: virtual power of the force at its point; the gyroscopic terms
+  // are workless. Round-off.
+  EXPECT_NEAR(sys.forces(q, v, 0.0).dot(v), f.force_world.dot(v_point), 1e-13);
+}
+
+TEST(SpatialModelErrors, AxisOfZeroLength) {
+  Model m = two_body_model(JointType::Revolute);
+  m.joints[1].axis_i.setZero();
+  try {
+    const System sys(m);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("joint 'J': axis_i of zero length"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SpatialModelErrors, DriveOnAJointWithoutThatCoordinate) {
+  const Model m = two_body_model(JointType::Spherical, DriveCoordinate::Rotation);
+  try {
+    const System sys(m);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a spherical joint ('J') has no driven rotation"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SpatialModelErrors, MechanismThatCannotBeAssembledNamesTheJoints) {
+  Model m;
+  m.name = "too long";
+  Body ground;
+  ground.name = "ground";
+  ground.fixed = true;
+  ground.points["far"] = {3.0, 0.0, 0.0};
+  Body rod;
+  rod.name = "rod";
+  rod.mass_kg = 1.0;
+  rod.inertia_kgm2 = Eigen::Matrix3d::Identity();
+  rod.points["end"] = {1.0, 0.0, 0.0};
+  m.bodies = {ground, rod};
+  m.joints = {make_joint("near", JointType::Spherical, "ground", "origin", "rod", "origin"),
+              make_joint("reach", JointType::Spherical, "ground", "far", "rod", "end")};
+  const System sys(m);
+  try {
+    assemble(sys, sys.initial_positions(), 0.0);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be assembled"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'reach'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'near'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SpatialModelErrors, InertiaNotPositiveDefinite) {
+  Model m = two_body_model(JointType::Revolute);
+  m.bodies[2].inertia_kgm2 = Eigen::Vector3d(0.1, 0.0, 0.1).asDiagonal();
+  m.bodies[2].com_body.setZero();
+  EXPECT_THROW(System{m}, Error);
 }
 
 }  // namespace
