@@ -11,6 +11,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/multibody/sundials_check.hpp"
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
+#include "scaled_jacobian.hpp"
 
 namespace kinetofem::mech::spatial {
 
@@ -96,11 +97,13 @@ Results simulate_ggl(const System& system, const std::vector<double>& times, con
   const VectorXd q0 = assemble(system, system.initial_positions(), t0);
   const VectorXd v0 = solve_velocities(system, q0, t0, system.initial_velocities());
 
-  // An independent row set: column-pivoting QR of Pi^T at the initial state.
+  // An independent row set: column-pivoting QR of Pi~^T (the mass-metric
+  // Jacobian, scaled_jacobian.hpp) at the initial state.
   const MatrixXd pi0 = system.jacobian_v(q0, t0);
   std::vector<int> kept;
   if (pi0.rows() > 0) {
-    Eigen::ColPivHouseholderQR<MatrixXd> qr(pi0.transpose());
+    const ScaledJacobian scaled(system, q0, t0, options.rank_tolerance);
+    Eigen::ColPivHouseholderQR<MatrixXd> qr(scaled.pi_scaled.transpose());
     qr.setThreshold(options.rank_tolerance);
     for (Eigen::Index c = 0; c < qr.rank(); ++c) kept.push_back(static_cast<int>(qr.colsPermutation().indices()(c)));
     std::sort(kept.begin(), kept.end());

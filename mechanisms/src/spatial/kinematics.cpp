@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "kinetofem/core/error.hpp"
+#include "scaled_jacobian.hpp"
 
 namespace kinetofem::mech::spatial {
 
@@ -56,26 +57,15 @@ VectorXd assemble(const System& system, VectorXd q, double t, const KinematicOpt
 }
 
 VectorXd solve_velocities(const System& system, const VectorXd& q, double t, const VectorXd& v_guess) {
-  const int n = system.n_velocities(), m = system.n_constraints();
-  const MatrixXd mass = system.mass_matrix(), pi = system.jacobian_v(q, t);
-  MatrixXd kkt = MatrixXd::Zero(n + m, n + m);
-  kkt.topLeftCorner(n, n) = mass;
-  kkt.topRightCorner(n, m) = pi.transpose();
-  kkt.bottomLeftCorner(m, n) = pi;
-  VectorXd rhs(n + m);
-  rhs << mass * v_guess, system.nu(q, t);
-  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;
-  cod.setThreshold(1e-10);
-  cod.compute(kkt);
-  return cod.solve(rhs).head(n);
+  // min |v - v_guess|_M with Pi v = nu: in x = C^T v, x = x_g + pinv(Pi~) (nu - Pi~ x_g).
+  const ScaledJacobian scaled(system, q, t);
+  VectorXd x = scaled.to_scaled(v_guess);
+  if (system.n_constraints() > 0) x += scaled.pinv.transpose() * (system.nu(q, t) - scaled.pi_scaled * x);
+  return scaled.to_velocity(x);
 }
 
 int degrees_of_freedom(const System& system, const VectorXd& q, double t) {
-  const MatrixXd pi = system.jacobian_v(q, t);
-  if (pi.rows() == 0) return system.n_velocities();
-  Eigen::ColPivHouseholderQR<MatrixXd> qr(pi.transpose());
-  qr.setThreshold(1e-10);
-  return system.n_velocities() - static_cast<int>(qr.rank());
+  return system.n_velocities() - ScaledJacobian(system, q, t).rank;
 }
 
 Results run_kinematics(const System& system, const std::vector<double>& times, const KinematicOptions& options) {

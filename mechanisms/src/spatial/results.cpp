@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "kinetofem/core/error.hpp"
+#include "scaled_jacobian.hpp"
 
 namespace kinetofem::mech::spatial {
 
@@ -41,27 +42,23 @@ Reaction reaction(const System& system, int body, const Vector3d& s_body, const 
 }  // namespace
 
 IndexOneSolution solve_index_one(const System& system, const VectorXd& q, const VectorXd& v, double t) {
-  const int n = system.n_velocities(), m = system.n_constraints();
-  const MatrixXd pi = system.jacobian_v(q, t);
-  MatrixXd kkt = MatrixXd::Zero(n + m, n + m);
-  kkt.topLeftCorner(n, n) = system.mass_matrix();
-  kkt.topRightCorner(n, m) = pi.transpose();
-  kkt.bottomLeftCorner(m, n) = pi;
-  VectorXd rhs(n + m);
-  rhs << system.forces(q, v, t), system.gamma(q, v, t);
-  // Rank-revealing: a redundant row makes the matrix singular; the complete
-  // orthogonal decomposition gives the minimum-norm solution, in which v' is
-  // the unique acceleration and lambda the minimum-norm multipliers.
-  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;
-  cod.setThreshold(1e-10);
-  cod.compute(kkt);
-  const VectorXd x = cod.solve(rhs);
+  const int m = system.n_constraints();
+  const ScaledJacobian scaled(system, q, t);
+  // In x = C^T v': x + Pi~^T lambda = C^-1 (Q - h), Pi~ x = gamma, so
+  // (Pi~ Pi~^T) lambda = Pi~ C^-1 (Q - h) - gamma; its minimum-norm solution is
+  // P P^T (...) (scaled_jacobian.hpp). A redundant row makes Pi~ Pi~^T singular,
+  // and this gives the minimum-norm multipliers with the unique v'.
+  const VectorXd f = scaled.scaled_force(system.forces(q, v, t));
+  const VectorXd gamma = system.gamma(q, v, t);
   IndexOneSolution s;
-  s.v_dot = x.head(n);
-  s.lambda = x.tail(m);
-  s.redundant_rows = n + m - static_cast<int>(cod.rank());
-  const double residual = (kkt * x - rhs).cwiseAbs().maxCoeff();
-  const double scale = std::max(1.0, rhs.cwiseAbs().maxCoeff());
+  s.lambda = m > 0 ? VectorXd(scaled.pinv * (scaled.pinv.transpose() * (scaled.pi_scaled * f - gamma)))
+                   : VectorXd();
+  const VectorXd x = m > 0 ? VectorXd(f - scaled.pi_scaled.transpose() * s.lambda) : f;
+  s.v_dot = scaled.to_velocity(x);
+  s.redundant_rows = m - scaled.rank;
+  // Redundant rows whose right-hand sides disagree leave Pi v' != gamma.
+  const double residual = m > 0 ? (scaled.pi_scaled * x - gamma).cwiseAbs().maxCoeff() : 0.0;
+  const double scale = std::max(1.0, m > 0 ? gamma.cwiseAbs().maxCoeff() + (scaled.pi_scaled * f).cwiseAbs().maxCoeff() : 0.0);
   require(residual <= 1e-6 * scale,
           "spatial model '{}' at t = {} s: the acceleration equations are inconsistent (residual {:.3e}): redundant "
           "constraints that disagree, or a singular position",

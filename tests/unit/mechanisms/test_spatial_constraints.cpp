@@ -179,11 +179,11 @@ TEST(SpatialConstraints, GammaMatchesSecondDerivativeAlongAMotion) {
   }
 }
 
-// A planar four-bar (ground 2 m, crank 1 m, coupler 2.5 m, rocker 1.8 m) with
-// four revolutes about z, crank driven: 20 rows on 18 velocities, DoF 0 with 3
+// A planar four-bar (ground 2 m, crank 1 m, coupler 2.5 m, rocker 1.8 m,
+// mass_per_m kg/m, axial_inertia about each rod) with four revolutes about z, crank driven: 20 rows on 18 velocities, DoF 0 with 3
 // redundant rows (the out-of-plane ones of the loop). The index-1 solve must
 // not fail, must report 3, and must balance every body.
-TEST(SpatialRedundancy, PlanarFourBarOfRevolutesReportsThreeRedundantRows) {
+void check_redundant_four_bar(double mass_per_m, double axial_inertia) {
   Model m;
   m.name = "spatial four-bar";
   m.gravity = {0.0, -9.80665, 0.0};
@@ -191,11 +191,12 @@ TEST(SpatialRedundancy, PlanarFourBarOfRevolutesReportsThreeRedundantRows) {
   ground.name = "ground";
   ground.fixed = true;
   ground.points["D"] = {2.0, 0.0, 0.0};
-  const auto link = [](const std::string& name, double length, const Vector3d& origin, double angle) {
+  const auto link = [&](const std::string& name, double length, const Vector3d& origin, double angle) {
     Body b;
     b.name = name;
-    b.mass_kg = length;
-    b.inertia_kgm2 = Eigen::Vector3d(0.01, length * length / 12.0, length * length / 12.0).asDiagonal();
+    b.mass_kg = mass_per_m * length;
+    const double across = b.mass_kg * length * length / 12.0;
+    b.inertia_kgm2 = Eigen::Vector3d(axial_inertia, across, across).asDiagonal();
     b.com_body = {0.5 * length, 0.0, 0.0};
     b.points["end"] = {length, 0.0, 0.0};
     b.position = origin;
@@ -222,11 +223,19 @@ TEST(SpatialRedundancy, PlanarFourBarOfRevolutesReportsThreeRedundantRows) {
     EXPECT_LT(f.equilibrium_residual, 1e-12);
     EXPECT_LT(f.drift_position_m, 1e-12);
     EXPECT_NEAR(f.drives[0].s_dot, 2.0, 1e-12);
-    // Minimum-norm multipliers under in-plane loads: no force along z.
-    for (const JointState& j : f.joints) EXPECT_NEAR(j.on_j.force_world.z(), 0.0, 1e-9) << j.name;
+    // Minimum-norm multipliers under in-plane loads: no force along z (1e-9 of the weight).
+    const double weight = mass_per_m * (1.0 + 2.5 + 1.8) * 9.80665;
+    for (const JointState& j : f.joints) EXPECT_NEAR(j.on_j.force_world.z(), 0.0, 1e-9 * weight) << j.name;
   }
   std::printf("%s", res.format_checks().c_str());
 }
+
+TEST(SpatialRedundancy, PlanarFourBarOfRevolutesReportsThreeRedundantRows) { check_redundant_four_bar(1.0, 0.01); }
+
+// The rank is decided in the mass metric (results.hpp): heavy links with a
+// tiny inertia about their own axis (1e-12 kg m^2, 1e15 below the others)
+// still give 3 redundant rows, not a spurious fourth.
+TEST(SpatialRedundancy, RankIsIndependentOfTheMassScale) { check_redundant_four_bar(1000.0, 1e-12); }
 
 // A point mass with rotary inertia moves the centre of mass and adds
 // J_pm + m_pm (|d|^2 I - d d^T) about it; the bare body's own inertia shifts

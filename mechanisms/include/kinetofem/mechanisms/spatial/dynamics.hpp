@@ -11,7 +11,7 @@
 // mu keeps p on the unit sphere to the Newton tolerance.
 //
 // Redundant rows: at the consistent initial state a column-pivoting QR of
-// Pi^T selects an independent set of rows; IDAS integrates with those only (a
+// the mass-metric Jacobian Pi~^T (results.hpp) selects an independent set of rows; IDAS integrates with those only (a
 // singular Newton matrix is then impossible). The dropped rows still count in
 // every frame's drift, and the frames' multipliers come from the rank-revealing
 // index-1 solve over all rows (results.hpp).
@@ -36,7 +36,7 @@ struct DynamicsOptions {
   long max_steps = 500000;
   double max_step_s = 0.0;      // 0: no limit
   double initial_step_s = 0.0;  // 0: automatic (the second-order rule of the planar core)
-  double rank_tolerance = 1e-10;  // relative, on the diagonal of R when selecting rows
+  double rank_tolerance = kRankTolerance;  // relative, on the pivots when selecting rows (results.hpp)
 };
 
 // times: output times, increasing; times[0] is the initial time.

@@ -6,7 +6,8 @@
 //                        rows assembles to the nearest consistent pose;
 //   solve_velocities     the velocity nearest the guess in the mass metric with
 //                        Pi v = nu: min |v - v_guess|_M (the exact velocities
-//                        of a fully driven mechanism);
+//                        of a fully driven mechanism), by the pseudo-inverse of
+//                        the mass-metric Jacobian (results.hpp);
 //   run_kinematics       a fully driven mechanism (DoF 0) over output times:
 //                        pose, velocity, and from the index-1 system (results.hpp)
 //                        accelerations, reactions and drive efforts (inverse dynamics).
@@ -27,7 +28,7 @@ struct KinematicOptions {
 Eigen::VectorXd assemble(const System& system, Eigen::VectorXd q_guess, double t, const KinematicOptions& options = {});
 Eigen::VectorXd solve_velocities(const System& system, const Eigen::VectorXd& q, double t,
                                  const Eigen::VectorXd& v_guess);
-// Degrees of freedom at q: 6 nb - rank(Pi).
+// Degrees of freedom at q: 6 nb - rank(Pi) (rank at kRankTolerance, results.hpp).
 int degrees_of_freedom(const System& system, const Eigen::VectorXd& q, double t);
 
 // Throws unless the model has DoF 0 at the assembled initial pose. Each output

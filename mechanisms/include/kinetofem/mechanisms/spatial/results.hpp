@@ -5,10 +5,13 @@
 // accelerations and multipliers are recomputed from (q, v) by the index-1 system
 //     [M   Pi^T] [v'    ]   [Q - h]
 //     [Pi   0  ] [lambda] = [gamma],
-// solved by a complete orthogonal decomposition (rank-revealing), so that
-// redundant constraint rows (a planar loop built from spatial revolutes,
-// Bricard's mechanism) give the minimum-norm multipliers instead of a singular
-// failure; Frame::redundant_rows counts them. v' is unique either way.
+// in the mass metric (x = C^T v', M = C C^T, Pi~ = Pi C^-T) by a complete
+// orthogonal decomposition of Pi~^T (rank-revealing, threshold kRankTolerance
+// relative to its largest pivot), so that redundant constraint rows (a planar
+// loop built from spatial revolutes, Bricard's mechanism) give the
+// minimum-norm multipliers instead of a singular failure; Frame::redundant_rows
+// counts them. v' is unique either way. Redundant rows whose right-hand sides
+// disagree are an error.
 //
 // Reaction of a joint on one of its bodies: the load -Pi(rows, body)^T lambda
 // (system.hpp), i.e. a force F (world) and a moment about the body's centre of
@@ -23,6 +26,11 @@
 #include "kinetofem/mechanisms/spatial/system.hpp"
 
 namespace kinetofem::mech::spatial {
+
+// Relative threshold on the pivots of the mass-metric Jacobian Pi~^T below
+// which a constraint row counts as redundant (index-1 solve, velocity
+// projection, DoF count, IDAS's row selection).
+inline constexpr double kRankTolerance = 1e-10;
 
 struct BodyState {
   std::string name;
