@@ -12,6 +12,7 @@
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
+#include "kinetofem/mechanisms/spatial/results.hpp"
 #include "kinetofem/mechanisms/spatial/rotation.hpp"
 #include "kinetofem/mechanisms/spatial/system.hpp"
 
@@ -102,6 +103,49 @@ TEST(SpatialJointTable, RowsEqualCarriedReactionComponents) {
     EXPECT_EQ(sys.block("J").rows, f.rows) << f.name;
     EXPECT_EQ(sys.evaluate(sys.block("J"), sys.initial_positions(), sys.initial_velocities(), 0.0).phi.size(), f.rows);
     EXPECT_EQ(joint_type_named(f.name), t);
+  }
+}
+
+// At an assembled pose with motion, each joint's reaction on body_j (at P_j,
+// world axes) carries only the components of the joint table: a joint with 2
+// forces has none along h_i; 0 moments: none; 2: none about h_i; the universal
+// joint's 1: only about h_i x h_j. Action equals reaction at a shared point;
+// across a slide the moments differ by the arm d x F.
+TEST(SpatialJointTable, ReactionsCarryOnlyTheTableComponents) {
+  for (JointType t : all_joint_types) {
+    const JointFacts& facts = joint_facts(t);
+    Model m = two_body_model(t);
+    m.gravity = {1.0, -9.0, 3.0};
+    const System sys(m);
+    const VectorXd q = assemble(sys, sys.initial_positions(), 0.0);
+    VectorXd v_guess(sys.n_velocities());
+    v_guess << 0.3, -0.2, 0.5, 1.1, -0.7, 0.4, -0.6, 0.8, 0.2, 2.0, 0.5, -1.5;
+    const VectorXd v = solve_velocities(sys, q, 0.0, v_guess);
+    const Frame f = make_frame(sys, 0.0, q, v);
+    const ConstraintBlock& blk = sys.block("J");
+    const JointState& j = f.joints[1];
+    const Vector3d h_i = sys.rotation(blk.body_i, q) * blk.h_i, h_j = sys.rotation(blk.body_j, q) * blk.h_j;
+    const double scale = std::max(j.on_j.force_world.norm(), j.on_j.moment_world.norm());
+    // Reference: the rows' directions (system.hpp); round-off, 1e-12 of the reaction.
+    const double tol = 1e-12 * scale;
+    if (facts.forces == 2) {
+      EXPECT_NEAR(j.on_j.force_world.dot(h_i), 0.0, tol) << facts.name;
+    }
+    if (facts.moments == 0) {
+      EXPECT_LT(j.on_j.moment_world.norm(), tol) << facts.name;
+    }
+    if (facts.moments == 2) {
+      EXPECT_NEAR(j.on_j.moment_world.dot(h_i), 0.0, tol) << facts.name;
+    }
+    if (facts.moments == 1) {
+      EXPECT_NEAR(j.on_j.moment_world.dot(h_i), 0.0, tol) << facts.name;
+      EXPECT_NEAR(j.on_j.moment_world.dot(h_j), 0.0, tol) << facts.name;
+    }
+    EXPECT_LT((j.on_i.force_world + j.on_j.force_world).norm(), tol) << facts.name;
+    const Vector3d arm = j.on_j.point_world - j.on_i.point_world;
+    EXPECT_LT((j.on_i.moment_world + j.on_j.moment_world + arm.cross(j.on_j.force_world)).norm(), tol) << facts.name;
+    EXPECT_GT(scale, 0.1) << facts.name;
+    EXPECT_EQ(f.redundant_rows, 0) << facts.name;
   }
 }
 
