@@ -17,10 +17,6 @@ using Eigen::Vector3d;
 using Eigen::Vector4d;
 using Eigen::VectorXd;
 
-void set_rotation(Body& body, const Matrix3d& rotation_matrix) {
-  body.euler_parameters = spatial::euler_parameters(rotation_matrix);
-}
-
 namespace {
 
 // One body of a block at a state (a fixed body: its pose, at rest).

@@ -338,6 +338,16 @@ TEST(SpatialModel, PointForceAndGyroscopicTermsHaveTheRightPower) {
   EXPECT_NEAR(sys.forces(q, v, 0.0).dot(v), f.force_world.dot(v_point), 1e-13);
 }
 
+// A pose given as a rotation matrix equals the same pose as Euler parameters.
+TEST(SpatialModel, RotationMatrixAndEulerParametersGiveTheSamePose) {
+  const Vector4d p = axis_angle(Vector3d(0.3, -0.5, 0.8).normalized(), 2.9);
+  Body b;
+  set_rotation(b, rotation(p));
+  // Reference: the rotation matrix of p (rotation.hpp); round-off.
+  EXPECT_LT((rotation(b.euler_parameters) - rotation(p)).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT((rotation(p) * rotation(p).transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-15);
+}
+
 TEST(SpatialModelErrors, AxisOfZeroLength) {
   Model m = two_body_model(JointType::Revolute);
   m.joints[1].axis_i.setZero();

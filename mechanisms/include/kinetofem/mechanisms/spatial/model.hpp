@@ -23,6 +23,7 @@
 
 #include "kinetofem/mechanisms/motion_law.hpp"
 #include "kinetofem/mechanisms/spatial/joint_traits.hpp"
+#include "kinetofem/mechanisms/spatial/rotation.hpp"
 
 namespace kinetofem::mech::spatial {
 
@@ -53,7 +54,9 @@ struct Body {
 };
 
 // Sets a body's rotation from a rotation matrix (body axes -> world).
-void set_rotation(Body& body, const Eigen::Matrix3d& rotation);
+inline void set_rotation(Body& body, const Eigen::Matrix3d& rotation) {
+  body.euler_parameters = euler_parameters(rotation);
+}
 
 // Joint between point_i of body_i and point_j of body_j (joint_traits.hpp for
 // the types and their frames). axis_i, axis_j: h_i, h_j in the bodies' frames
