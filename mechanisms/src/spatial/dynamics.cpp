@@ -176,6 +176,10 @@ Results simulate_ggl(const System& system, const std::vector<double>& times, con
     results.frames.push_back(make_frame(system, t_reached, q, v));
   }
   RunSummary& s = results.summary;
+  for (const ConstraintBlock& blk : system.blocks())
+    for (int r = 0; r < blk.rows; ++r)
+      if (!std::binary_search(kept.begin(), kept.end(), blk.first_row + r))
+        s.dropped_rows.push_back(fmt::format("'{}' row {} of {}", blk.name, r + 1, blk.rows));
   long value = 0;
   sundials_check(IDAGetNumSteps(ida.mem, &s.steps), "IDAGetNumSteps");
   sundials_check(IDAGetNumResEvals(ida.mem, &s.residual_evaluations), "IDAGetNumResEvals");

@@ -146,6 +146,11 @@ void summarize(const System& system, Results& results) {
 std::string Results::format_checks() const {
   const RunSummary& s = summary;
   std::string text = fmt::format("  {}: {} frames, redundant rows {}\n", s.method, frames.size(), s.redundant_rows);
+  if (!s.dropped_rows.empty()) {
+    text += "  rows left out of the integration:";
+    for (std::size_t k = 0; k < s.dropped_rows.size(); ++k) text += (k == 0 ? " " : ", ") + s.dropped_rows[k];
+    text += "\n";
+  }
   text += fmt::format("  drift: position {:.3e} m ({:.3e} of the characteristic length), velocity {:.3e} m/s\n",
                       s.max_drift_position_m, s.max_drift_relative, s.max_drift_velocity_m_per_s);
   text += fmt::format("  equilibrium residual {:.3e}\n", s.max_equilibrium_residual);

@@ -391,8 +391,9 @@ TEST(SpatialDynamics, RedundantFourBarEqualsThePlanarCore) {
   std::printf("free four-bar, spatial (%d redundant rows) vs planar core over 1 s: angles %.2e rad, in-plane forces "
               "%.2e of the peak reaction, force along z %.2e; energy %.2e of W x 1 m\n%s",
               res.summary.redundant_rows, c.angle, c.force, c.out_of_plane_force, energy, res.format_checks().c_str());
-  // Reference: 20 rows, 18 velocities, 1 DoF: 3 redundant.
+  // Reference: 20 rows, 18 velocities, 1 DoF: 3 redundant, left out of the integration.
   EXPECT_EQ(res.summary.redundant_rows, 3);
+  EXPECT_EQ(res.summary.dropped_rows.size(), 3u);
   // Reference: the planar core, both integrators at 1e-12: 1e-9 rad and 1e-9
   // of the peak reaction.
   EXPECT_LT(c.angle, 1e-9);
@@ -544,6 +545,7 @@ TEST(SpatialDynamics, BricardMechanismRunsWithItsRedundantRow) {
   // Reference: 6 revolutes x 5 rows on 5 x 6 velocities with 1 DoF (Bricard): 1 redundant row throughout.
   EXPECT_EQ(redundant_min, 1);
   EXPECT_EQ(redundant_max, 1);
+  EXPECT_EQ(res.summary.dropped_rows.size(), 1u);
   // Reference: a conservative system; issue 28: 1e-8; drift below 1e-8 of the rod length.
   EXPECT_LT(energy, 1e-8);
   EXPECT_LT(res.summary.max_drift_relative, 1e-8);

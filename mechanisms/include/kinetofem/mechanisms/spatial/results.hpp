@@ -78,6 +78,9 @@ struct RunSummary {
   double max_drift_relative = 0.0;  // position drift / characteristic length
   double max_equilibrium_residual = 0.0;
   int redundant_rows = 0;           // at the initial state
+  // IDAS: the rows left out of the integrated set, "'C' row 4 of 5" (1-based),
+  // chosen by the pivoting; which rows of a redundant loop go is arbitrary.
+  std::vector<std::string> dropped_rows;
   long steps = 0, residual_evaluations = 0, error_test_failures = 0, nonlinear_failures = 0;
 };
 
