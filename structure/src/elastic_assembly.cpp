@@ -49,42 +49,42 @@ const char* name_of(BoreCoupling coupling) {
   return coupling == BoreCoupling::RigidBore ? "rigid_bore" : "distributing";
 }
 
-const PartField& PoseSolution::part(const std::string& name) const {
+const PartField& PoseSolution::part(const std::string& name) const& {
   for (const auto& p : parts)
     if (p.body == name) return p;
   fail("elastic assembly: no part of body '{}'", name);
 }
-const JointLoad& PoseSolution::joint(const std::string& name) const {
+const JointLoad& PoseSolution::joint(const std::string& name) const& {
   for (const auto& j : joints)
     if (j.joint == name) return j;
   fail("elastic assembly: no joint '{}'", name);
 }
-const PointResult& PoseSolution::point(const std::string& name) const {
+const PointResult& PoseSolution::point(const std::string& name) const& {
   for (const auto& p : points)
     if (p.name == name) return p;
   fail("elastic assembly: no tracked point '{}'", name);
 }
-const ChainResult& PoseSolution::chain(const std::string& name) const {
+const ChainResult& PoseSolution::chain(const std::string& name) const& {
   for (const auto& c : chains)
     if (c.chain == name) return c;
   fail("elastic assembly: no chain '{}'", name);
 }
-const DriveResult& PoseSolution::drive(const std::string& name) const {
+const DriveResult& PoseSolution::drive(const std::string& name) const& {
   for (const auto& d : drives)
     if (d.drive == name) return d;
   fail("elastic assembly: no motion drive '{}'", name);
 }
-const TransmissionResult& PoseSolution::transmission(const std::string& name) const {
+const TransmissionResult& PoseSolution::transmission(const std::string& name) const& {
   for (const auto& t : transmissions)
     if (t.transmission == name) return t;
   fail("elastic assembly: no transmission '{}'", name);
 }
-const PinResult& PoseSolution::pin(const std::string& joint) const {
+const PinResult& PoseSolution::pin(const std::string& joint) const& {
   for (const auto& p : pins)
     if (p.joint == joint) return p;
   fail("elastic assembly: no elastic pin at joint '{}'", joint);
 }
-const BodyMotion& PoseSolution::body(const std::string& name) const {
+const BodyMotion& PoseSolution::body(const std::string& name) const& {
   for (const auto& b : bodies)
     if (b.body == name) return b;
   fail("elastic assembly: no moving body '{}'", name);

@@ -135,7 +135,8 @@ TEST(ElasticAssemblyTransmission, PreloadedBeltWhoseSpanWouldGoSlackIsAnError) {
   // Enough preload: both spans carry, their difference is the pull.
   options.transmissions = {{"belt", 850.0, 0.03, 500.0}};
   ElasticAssembly preloaded({}, m, options);
-  const TransmissionResult& t = preloaded.solve(frame).transmission("belt");
+  const PoseSolution pose = preloaded.solve(frame);
+  const TransmissionResult& t = pose.transmission("belt");
   EXPECT_NEAR(t.span_tension_n[0] - t.span_tension_n[1], t.moment_output_nm / 0.03, 1e-9 * 500.0);
   EXPECT_NEAR(t.span_tension_n[0] + t.span_tension_n[1], 1000.0, 1e-9 * 500.0);
 }

@@ -419,15 +419,24 @@ struct PoseSolution {
   double max_displacement_m = 0.0;  // over the parts' nodes
   std::string max_displacement_body;
 
-  // Throw Error when the name is absent.
-  const PartField& part(const std::string& body) const;
-  const JointLoad& joint(const std::string& name) const;
-  const PointResult& point(const std::string& name) const;
-  const ChainResult& chain(const std::string& name) const;
-  const DriveResult& drive(const std::string& name) const;
-  const TransmissionResult& transmission(const std::string& name) const;
-  const PinResult& pin(const std::string& joint) const;
-  const BodyMotion& body(const std::string& name) const;
+  // Throw Error when the name is absent. Not on a temporary (the reference
+  // would dangle: keep the solution in a variable).
+  const PartField& part(const std::string& body) const&;
+  const JointLoad& joint(const std::string& name) const&;
+  const PointResult& point(const std::string& name) const&;
+  const ChainResult& chain(const std::string& name) const&;
+  const DriveResult& drive(const std::string& name) const&;
+  const TransmissionResult& transmission(const std::string& name) const&;
+  const PinResult& pin(const std::string& joint) const&;
+  const BodyMotion& body(const std::string& name) const&;
+  const PartField& part(const std::string&) const&& = delete;
+  const JointLoad& joint(const std::string&) const&& = delete;
+  const PointResult& point(const std::string&) const&& = delete;
+  const ChainResult& chain(const std::string&) const&& = delete;
+  const DriveResult& drive(const std::string&) const&& = delete;
+  const TransmissionResult& transmission(const std::string&) const&& = delete;
+  const PinResult& pin(const std::string&) const&& = delete;
+  const BodyMotion& body(const std::string&) const&& = delete;
 };
 
 struct InterfaceInfo {
