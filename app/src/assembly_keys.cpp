@@ -62,10 +62,10 @@ structure::TransmissionMember read_transmission_member(const CaseFile& c, std::s
   const bool belt = c.text_value(p + "kind", k) == "belt";
   const double r = c.number(p + "radius_mm", k);
   for (const char* key : {"belt_ea_n", "span_length_mm", "preload_n"})
-    require(belt || !c.has(p + key, k), "{}: transmission '{}' is a gear: this key is a belt's", c.where(p + key, k),
+    require(belt || !c.departs_from_default(p + key, k), "{}: transmission '{}' is a gear: this key is a belt's", c.where(p + key, k),
             m.transmission);
   for (const char* key : {"face_width_mm", "mesh_stiffness_n_per_mm_um"})
-    require(!belt || !c.has(p + key, k), "{}: transmission '{}' is a belt: this key is a gear's", c.where(p + key, k),
+    require(!belt || !c.departs_from_default(p + key, k), "{}: transmission '{}' is a belt: this key is a gear's", c.where(p + key, k),
             m.transmission);
   if (belt) {
     m.radius_m = r;
@@ -260,7 +260,7 @@ std::optional<structure::AssemblyOptions> read_linkage_assembly(const CaseFile& 
   for (std::size_t k = 0; k < c.count("transmission"); ++k)
     for (const char* key : {"stiffness_n_m_per_rad", "belt_ea_n", "span_length_mm", "preload_n", "face_width_mm",
                             "mesh_stiffness_n_per_mm_um"})
-      require(enabled || !c.has(std::string("transmission[].") + key, k),
+      require(enabled || !c.departs_from_default(std::string("transmission[].") + key, k),
               "{}: set assembly.enabled = true to use it (the transmission's stiffness only enters the elastic assembly)",
               c.where(std::string("transmission[].") + key, k));
   // A [[slide]] names a prismatic joint of the linkage, once.

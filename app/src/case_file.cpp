@@ -460,6 +460,13 @@ bool CaseFile::has(const std::string& path, std::size_t element) const {
   return find(path, element) != nullptr;
 }
 
+bool CaseFile::departs_from_default(const std::string& path, std::size_t element) const {
+  if (!has(path, element)) return false;
+  const KeySpec& key = spec(path);
+  return !(key.type == KeySpec::Type::Number && key.default_number &&
+           number(path, element) == *key.default_number * key.to_si);
+}
+
 std::string CaseFile::where(const std::string& path, std::size_t element) const {
   const auto* node = find(path, element);
   std::string shown = path;

@@ -153,8 +153,12 @@ void add_part_keys(std::vector<KeySpec>& s) {
   s.push_back({.path = "joint[].pin_poisson_ratio", .type = Type::Number, .default_number = 0.3, .min = -0.999, .max = 0.499,
                .doc = "the elastic pin's Poisson ratio (with pin_youngs_modulus_mpa)"});
   for (const char* table : {"motion_drive", "force_drive"}) {
-    s.push_back({.path = std::string(table) + "[].face_i", .type = Type::String, .doc = "face set of body_i's part the drive's reaction torque enters through"});
-    s.push_back({.path = std::string(table) + "[].face_j", .type = Type::String, .doc = "face set of body_j's part the drive's torque enters through (the shaft bore)"});
+    s.push_back({.path = std::string(table) + "[].face_i", .type = Type::String,
+                 .doc = "face set of body_i's part the drive's reaction enters through (an angle drive's torque: the "
+                        "motor's mount; a displacement drive's force at point_i and its couple: the actuator's mount)"});
+    s.push_back({.path = std::string(table) + "[].face_j", .type = Type::String,
+                 .doc = "face set of body_j's part the drive's effort enters through (an angle drive's torque: the shaft "
+                        "bore; a displacement drive's force along its axis at point_j: the rod eye)"});
   }
   for (const char* side : {"input", "output"}) {
     const std::string p = std::string("transmission[].") + side + ".";

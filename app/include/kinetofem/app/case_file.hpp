@@ -105,6 +105,9 @@ class CaseFile {
   }
 
   bool has(const std::string& path, std::size_t element = 0) const;
+  // Given with a value other than the key's default (a number at its default,
+  // as `kinetofem case --template` writes it, says nothing).
+  bool departs_from_default(const std::string& path, std::size_t element = 0) const;
   // SI value of a Number key (its default if absent; Error if required and absent).
   double number(const std::string& path, std::size_t element = 0) const;
   long integer(const std::string& path, std::size_t element = 0) const;
