@@ -1,4 +1,5 @@
-// The mechanism loads picture (png_plots.hpp, 2.): joint reactions, chain tension and drive torque over time.
+// The mechanism loads picture (png_plots.hpp, 2.): joint reactions, chain tension, drive efforts and
+// transmission moments over time.
 #include "kinetofem/postproc/png_plots.hpp"
 
 #include <algorithm>
@@ -40,6 +41,10 @@ std::string legend_label(const std::string& name, bool magnitude, std::set<std::
     return name.size() > 8 && name.compare(name.size() - 8, 8, ".tension") == 0 ? "chain " + field(1) + " tension" : "";
   if (name.rfind("drive.", 0) == 0)
     return name.size() > 7 && name.compare(name.size() - 7, 7, ".effort") == 0 ? "drive " + field(1) : "";
+  if (name.rfind("transmission.", 0) == 0)  // its moment on the output's body_j; the pull is that over the radius
+    return name.size() > 14 && name.compare(name.size() - 14, 14, ".moment_output") == 0
+               ? "transmission " + field(1) + " (output)"
+               : "";
   if (name.find('.') != std::string::npos) return "";  // body., energy., check., point.: not loads
   std::string s = name;
   if (s.rfind("reaction_", 0) == 0) s = "R " + s.substr(9);
@@ -79,7 +84,9 @@ void write_mechanism_loads_picture(const ResultsFile& results, const std::filesy
   Canvas canvas(options.width_px, options.height_px);
   cairo_t* cr = canvas.cr();
   const double t_end = forces.empty() ? torques.front().x.back() : forces.front().x.back();
-  title(cr, canvas, fmt::format("{}: joint forces, chain tension and drive torque over the motion", case_name(results, options)),
+  title(cr, canvas,
+        fmt::format("{}: joint forces, chain tension, drive efforts and transmission moments over the motion",
+                    case_name(results, options)),
         fmt::format("mechanism histories, 0 .. {:.2f} s; |R|: magnitude of the force a joint transmits", t_end));
   const double left = 100, legend_w = 250, top = 100, bottom = 70, gap = 90;
   const double width = canvas.width() - left - legend_w - 30;
@@ -89,12 +96,12 @@ void write_mechanism_loads_picture(const ResultsFile& results, const std::filesy
   double y = top;
   if (!forces.empty()) {
     draw_curves(cr, Axes{left, y, width, force_h, 0, 1, 0, 1}, forces, "force [N]", "time [s]",
-                "Joint reaction magnitudes and chain tension", left + width + 25);
+                "Joint reaction magnitudes, chain tension, linear drives' forces", left + width + 25);
     y += force_h + gap;
   }
   if (!torques.empty())
     draw_curves(cr, Axes{left, y, width, total_h - (panels == 2 ? force_h : 0), 0, 1, 0, 1}, torques,
-                "torque [N·m]", "time [s]", "Drive torque", left + width + 25);
+                "torque [N·m]", "time [s]", "Drive torques, transmission moments", left + width + 25);
   canvas.save(png);
 }
 
