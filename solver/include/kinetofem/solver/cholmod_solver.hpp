@@ -62,7 +62,9 @@ struct CholmodOptions {
   int relax_columns[3] = {4, 16, 48};
   double relax_zero_fraction[3] = {0.8, 0.1, 0.05};
   double min_reciprocal_condition = 1e-13;  // below: treated as singular
-  double max_relative_residual = 1e-8;      // above: the solve is an error
+  // Normwise backward error ||K x - b|| / (||K|| ||x|| + ||b||) of a solve
+  // above this (after one step of iterative refinement): an error.
+  double max_relative_residual = 1e-8;
 };
 
 // The memory a numeric factor may take under `options`, bytes: max_factor_bytes,
@@ -80,7 +82,9 @@ struct CholmodStatistics {
   double factorize_seconds = 0.0;
   double last_solve_seconds = 0.0;
   std::int64_t last_solve_rhs = 0;
-  double last_relative_residual = 0.0;
+  double last_relative_residual = 0.0;    // ||K x - b|| / ||b||, worst checked column
+  double last_backward_error = 0.0;       // ||K x - b|| / (||K|| ||x|| + ||b||), worst checked column
+  std::int64_t refinement_steps = 0;      // solves refined once (their first residual above the bound)
   double reciprocal_condition = 0.0;
   std::string ordering;                   // ordering used: "METIS", "AMD", "METIS (node graph)"
   double factorize_gflops() const {
