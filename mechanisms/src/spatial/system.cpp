@@ -100,6 +100,62 @@ Row angle(const Row& sine, const Row& cosine) {
 
 double wrap_angle(double x) { return std::remainder(x, 2.0 * std::numbers::pi); }
 
+Row operator+(Row a, const Row& b) {
+  a.value += b.value;
+  a.rate += b.rate;
+  a.quad += b.quad;
+  a.jq += b.jq;
+  a.pi += b.pi;
+  return a;
+}
+
+Row operator*(double c, Row a) {
+  a.value *= c;
+  a.rate *= c;
+  a.quad *= c;
+  a.jq *= c;
+  a.pi *= c;
+  return a;
+}
+
+// f(x, y) of two rows by the chain rule, given f's value, gradient (fx, fy)
+// and Hessian (fxx, fxy, fyy) there: f'' = fx x'' + fy y'' + [x' y'] H [x' y']^T,
+// so the quadratic term adds the Hessian form to fx x_quad + fy y_quad.
+struct Smooth2 {
+  double value, fx, fy, fxx, fxy, fyy;
+};
+Row compose(const Smooth2& f, const Row& x, const Row& y) {
+  Row out;
+  out.value = f.value;
+  out.rate = f.fx * x.rate + f.fy * y.rate;
+  out.quad = f.fx * x.quad + f.fy * y.quad + f.fxx * x.rate * x.rate + 2.0 * f.fxy * x.rate * y.rate +
+             f.fyy * y.rate * y.rate;
+  out.jq = f.fx * x.jq + f.fy * y.jq;
+  out.pi = f.fx * x.pi + f.fy * y.pi;
+  return out;
+}
+
+// The chain's function of the hinge's in-plane coordinates (x, y) about the
+// roller centre (system.hpp): F = G(rho) - r sigma atan2(y, x),
+// G = sqrt(rho^2 - r^2) - r acos(r / rho), with its gradient and Hessian.
+Smooth2 chain_function(double x, double y, double r, double sigma) {
+  const double rho2 = x * x + y * y, rho = std::sqrt(rho2), b = std::sqrt(rho2 - r * r);
+  const double g1 = b / rho, g2 = r * r / (rho2 * b);  // G', G''
+  const double rho3 = rho2 * rho, rho4 = rho2 * rho2;
+  // rho's and psi's second derivatives (psi = atan2(y, x)).
+  const double rxx = y * y / rho3, rxy = -x * y / rho3, ryy = x * x / rho3;
+  const double pxx = 2.0 * x * y / rho4, pxy = (y * y - x * x) / rho4, pyy = -2.0 * x * y / rho4;
+  const double rx = x / rho, ry = y / rho;
+  Smooth2 f;
+  f.value = b - r * std::acos(r / rho) - r * sigma * std::atan2(y, x);
+  f.fx = (b * x + sigma * r * y) / rho2;
+  f.fy = (b * y - sigma * r * x) / rho2;
+  f.fxx = g2 * rx * rx + g1 * rxx - r * sigma * pxx;
+  f.fxy = g2 * rx * ry + g1 * rxy - r * sigma * pxy;
+  f.fyy = g2 * ry * ry + g1 * ryy - r * sigma * pyy;
+  return f;
+}
+
 }  // namespace
 
 System::System(Model model) : model_(std::move(model)) {
@@ -192,6 +248,16 @@ System::System(Model model) : model_(std::move(model)) {
       // The angle row is the last one; with reference 0 it evaluates to the initial angle.
       blk.reference = j.rotation_rad ? *j.rotation_rad : evaluate(blk, q0, v0, 0.0).phi(blk.rows - 1);
     }
+    if (facts.holds_length) {
+      require(std::isfinite(j.radius_m) && j.radius_m >= 0.0,
+              "spatial model '{}', chain '{}': the roller radius must be >= 0, got {} m", mname, j.name, j.radius_m);
+      require(!j.length_m || std::isfinite(*j.length_m), "spatial model '{}', chain '{}': the length is not finite",
+              mname, j.name);
+      blk.radius_m = j.radius_m;
+      blk.sigma = j.wrap_ccw ? 1.0 : -1.0;
+      // The length row is the last one; with reference 0 it evaluates to the initial length.
+      blk.reference = j.length_m ? *j.length_m : evaluate(blk, q0, v0, 0.0).phi(blk.rows - 1);
+    }
     n_rows_ += blk.rows;
     blocks_.push_back(std::move(blk));
   }
@@ -224,6 +290,13 @@ System::System(Model model) : model_(std::move(model)) {
     const int b = body_index(f.body);
     named_point(b, f.point);
     require(f.force_world.allFinite(), "spatial model '{}', point force '{}': not finite", mname, f.name);
+  }
+  for (const Spring& sp : model_.springs) {
+    named_point(body_index(sp.body_i), sp.point_i);
+    named_point(body_index(sp.body_j), sp.point_j);
+    require(std::isfinite(sp.stiffness_N_per_m) && std::isfinite(sp.damping_Ns_per_m) &&
+                std::isfinite(sp.free_length_m),
+            "spatial model '{}', spring '{}': stiffness, damping and free length must be finite", mname, sp.name);
   }
 }
 
@@ -317,8 +390,9 @@ BlockValues System::evaluate(const ConstraintBlock& blk, const VectorXd& q, cons
   const auto relative_angle = [&] { return angle(dot(g_i, f_j), dot(f_i, f_j)); };
 
   std::vector<Row> rows;
-  // Rows whose value is an angle, compared with a reference, are wrapped.
-  bool last_is_angle = false;
+  // Rows whose value is an angle, compared with a reference, are wrapped; so
+  // is the chain's length row, modulo one turn of the roller (2 pi r).
+  bool last_is_angle = false, last_is_chain = false;
   const auto point_rows = [&] {
     for (int k = 0; k < 3; ++k) rows.push_back(dot(constant(Vector3d::Unit(k)), d));
   };
@@ -367,6 +441,19 @@ BlockValues System::evaluate(const ConstraintBlock& blk, const VectorXd& q, cons
         rows.push_back(relative_angle());
         last_is_angle = true;
         break;
+      case JointType::Chain: {
+        // The hinge seen from the roller centre, e = -d, in body_i's (f_i, g_i).
+        const Row x = -1.0 * dot(f_i, d), y = -1.0 * dot(g_i, d);
+        const double rho = std::hypot(x.value, y.value), r = blk.radius_m;
+        require(rho > r && rho > 0.0,
+                "spatial model '{}', chain '{}': the hinge lies within the roller at t = {} s (distance {} m in the "
+                "chain's plane, r = {} m)",
+                model_.name, blk.name, t, rho, r);
+        rows.push_back(compose(chain_function(x.value, y.value, r, blk.sigma), x, y) +
+                       (r * blk.sigma) * relative_angle());
+        last_is_chain = true;
+        break;
+      }
     }
   }
   const int n = static_cast<int>(rows.size());
@@ -392,6 +479,11 @@ BlockValues System::evaluate(const ConstraintBlock& blk, const VectorXd& q, cons
     }
     out.phi(n - 1) -= target;
     if (last_is_angle) out.phi(n - 1) = wrap_angle(out.phi(n - 1));
+  }
+  if (last_is_chain) {
+    out.phi(n - 1) -= blk.reference;
+    const double period = 2.0 * std::numbers::pi * blk.radius_m;
+    if (period > 0.0) out.phi(n - 1) = std::remainder(out.phi(n - 1), period);
   }
   return out;
 }
@@ -507,12 +599,30 @@ VectorXd System::forces(const VectorXd& q, const VectorXd& v, double /*t*/) cons
     out.segment<3>(6 * k) = e.mass_kg * model_.gravity;
     out.segment<3>(6 * k + 3) = -w.cross(e.inertia_kgm2 * w);
   }
+  // A world force at a body point: the force, and its moment about the centre of mass in body axes.
+  const auto add_force = [&](int b, const Vector3d& s_body, const Vector3d& force) {
+    const int k = moving_index_[b];
+    if (k < 0) return;
+    out.segment<3>(6 * k) += force;
+    out.segment<3>(6 * k + 3) += s_body.cross(rotation(b, q).transpose() * force);
+  };
   for (const PointForce& f : model_.point_forces) {
     const int b = body_index(f.body);
-    const int k = moving_index_[b];
-    if (k < 0) continue;
-    out.segment<3>(6 * k) += f.force_world;
-    out.segment<3>(6 * k + 3) += relative_point(b, f.point).cross(rotation(b, q).transpose() * f.force_world);
+    add_force(b, relative_point(b, f.point), f.force_world);
+  }
+  for (const Spring& sp : model_.springs) {
+    const int bi = body_index(sp.body_i), bj = body_index(sp.body_j);
+    const Vector3d s_i = relative_point(bi, sp.point_i), s_j = relative_point(bj, sp.point_j);
+    const Matrix3d a_i = rotation(bi, q), a_j = rotation(bj, q);
+    const Vector3d d = com(bj, q) + a_j * s_j - com(bi, q) - a_i * s_i;
+    const Vector3d d_dot = com_velocity(bj, v) + a_j * angular_velocity_body(bj, v).cross(s_j) - com_velocity(bi, v) -
+                           a_i * angular_velocity_body(bi, v).cross(s_i);
+    const double length = d.norm();
+    require(length > 0.0, "spatial model '{}', spring '{}': zero length, no direction", model_.name, sp.name);
+    const Vector3d u = d / length;
+    const double tension = sp.stiffness_N_per_m * (length - sp.free_length_m) + sp.damping_Ns_per_m * u.dot(d_dot);
+    add_force(bi, s_i, tension * u);
+    add_force(bj, s_j, -tension * u);
   }
   return out;
 }
@@ -530,6 +640,11 @@ double System::kinetic_energy(const VectorXd& v) const {
 double System::potential_energy(const VectorXd& q) const {
   double u = 0.0;
   for (int k = 0; k < n_moving(); ++k) u -= effective_[moving_[k]].mass_kg * model_.gravity.dot(q.segment<3>(7 * k));
+  for (const Spring& sp : model_.springs) {
+    const int bi = body_index(sp.body_i), bj = body_index(sp.body_j);
+    const double stretch = (point_world(bj, sp.point_j, q) - point_world(bi, sp.point_i, q)).norm() - sp.free_length_m;
+    u += 0.5 * sp.stiffness_N_per_m * stretch * stretch;
+  }
   return u;
 }
 

@@ -22,10 +22,14 @@ enum class JointType {
   Cylindrical,  // P_j on the line through P_i along h_i, h_j parallel to h_i (4)
   Universal,    // P_i = P_j, the cross axes h_i and h_j stay perpendicular (4)
   Fixed,        // P_i = P_j, no relative rotation (6)
+  Chain,        // SPEC §1's chain in the plane normal to h_i: hinged to body_i at P_i, wrapped on a
+                // roller of radius r fixed to body_j with centre P_j; free length + r * wrapped angle
+                // is constant (1)
 };
 
 inline constexpr std::array all_joint_types = {JointType::Spherical,   JointType::Revolute,  JointType::Prismatic,
-                                               JointType::Cylindrical, JointType::Universal, JointType::Fixed};
+                                               JointType::Cylindrical, JointType::Universal, JointType::Fixed,
+                                               JointType::Chain};
 
 struct JointFacts {
   const char* name;
@@ -38,10 +42,15 @@ struct JointFacts {
   bool drives_translation;  // h_i . (P_j - P_i) (m)
   // A rotation reference about h_i (rad): the relative angle the joint holds.
   bool holds_rotation;
+  // A length reference (m): the chain's free length + r * wrapped angle.
+  bool holds_length;
   // Reaction components carried (forces + moments = rows): forces across the
   // axis (f_i, g_i) and, when 3, along h_i; moments about f_i, g_i and, when 3,
   // about h_i; the universal joint's one moment is about h_i x h_j. The others
-  // are zero in the reaction to round-off.
+  // are zero in the reaction to round-off. The chain's one force is its
+  // tension along the chain; on the roller it acts at the tangent point, so its
+  // moment about the roller centre P_j (r times the tension) is that force's
+  // arm, not a component of its own (zero for r = 0, a plain tie).
   int forces;
   int moments;
 };
@@ -53,6 +62,7 @@ inline constexpr JointFacts spherical{.name = "spherical",
                                       .drives_rotation = false,
                                       .drives_translation = false,
                                       .holds_rotation = false,
+                                      .holds_length = false,
                                       .forces = 3,
                                       .moments = 0};
 inline constexpr JointFacts revolute{.name = "revolute",
@@ -61,6 +71,7 @@ inline constexpr JointFacts revolute{.name = "revolute",
                                      .drives_rotation = true,
                                      .drives_translation = false,
                                      .holds_rotation = false,
+                                     .holds_length = false,
                                      .forces = 3,
                                      .moments = 2};
 inline constexpr JointFacts prismatic{.name = "prismatic",
@@ -69,6 +80,7 @@ inline constexpr JointFacts prismatic{.name = "prismatic",
                                       .drives_rotation = false,
                                       .drives_translation = true,
                                       .holds_rotation = true,
+                                      .holds_length = false,
                                       .forces = 2,
                                       .moments = 3};
 inline constexpr JointFacts cylindrical{.name = "cylindrical",
@@ -77,6 +89,7 @@ inline constexpr JointFacts cylindrical{.name = "cylindrical",
                                         .drives_rotation = true,
                                         .drives_translation = true,
                                         .holds_rotation = false,
+                                        .holds_length = false,
                                         .forces = 2,
                                         .moments = 2};
 inline constexpr JointFacts universal{.name = "universal",
@@ -85,6 +98,7 @@ inline constexpr JointFacts universal{.name = "universal",
                                       .drives_rotation = false,
                                       .drives_translation = false,
                                       .holds_rotation = false,
+                                      .holds_length = false,
                                       .forces = 3,
                                       .moments = 1};
 inline constexpr JointFacts fixed{.name = "fixed",
@@ -93,8 +107,18 @@ inline constexpr JointFacts fixed{.name = "fixed",
                                   .drives_rotation = false,
                                   .drives_translation = false,
                                   .holds_rotation = true,
+                                  .holds_length = false,
                                   .forces = 3,
                                   .moments = 3};
+inline constexpr JointFacts chain{.name = "chain",
+                                  .rows = 1,
+                                  .length_row = {true, false, false, false, false, false},
+                                  .drives_rotation = false,
+                                  .drives_translation = false,
+                                  .holds_rotation = false,
+                                  .holds_length = true,
+                                  .forces = 1,
+                                  .moments = 0};
 }  // namespace joint_tables
 
 constexpr const JointFacts& joint_facts(JointType type) {
@@ -105,6 +129,7 @@ constexpr const JointFacts& joint_facts(JointType type) {
     case JointType::Cylindrical: return joint_tables::cylindrical;
     case JointType::Universal: return joint_tables::universal;
     case JointType::Fixed: return joint_tables::fixed;
+    case JointType::Chain: return joint_tables::chain;
   }
   return joint_tables::spherical;  // unreachable for a valid enum value
 }

@@ -1,9 +1,10 @@
 #pragma once
 // spatial::Model — the plain-data description of a spatial linkage: rigid
 // bodies with named points, joints with axes, motion drives on a joint's
-// relative rotation or translation, point masses with rotary inertia, point
-// forces and gravity, all referred to by name. spatial::System (system.hpp)
-// checks and compiles it. Nothing else in kinetofem uses it yet.
+// relative rotation or translation, point masses with rotary inertia, springs
+// with dampers, point forces and gravity, all referred to by name.
+// spatial::System (system.hpp) checks and compiles it; from_planar.hpp lifts a
+// planar MultibodyModel into it.
 //
 // Frames and units (SI throughout):
 //   world frame: right-handed x, y, z (m);
@@ -76,6 +77,15 @@ struct Joint {
   // Prismatic and fixed: the relative angle held about h_i (rad); left empty,
   // that of the initial poses.
   std::optional<double> rotation_rad;
+  // Chain (SPEC §1; system.hpp for its equation): body_i carries the hinge
+  // P_i, body_j the roller of radius radius_m (>= 0; 0 is a plain tie to P_j)
+  // centred at P_j, both in the plane normal to h_i. wrap_ccw: followed from
+  // the hinge onto the roller, the chain turns counter-clockwise about h_i.
+  // length_m: free length + r * wrapped angle (m); left empty, that of the
+  // initial poses.
+  double radius_m = 0.0;
+  bool wrap_ccw = true;
+  std::optional<double> length_m;
 };
 
 inline Joint make_joint(std::string name, JointType type, std::string body_i, std::string point_i,
@@ -109,6 +119,19 @@ struct MotionDrive {
   std::optional<double> initial;  // s_0; left empty, s(initial poses) - law(0)
 };
 
+// Linear spring and damper between point_i of body_i and point_j of body_j,
+// length L = |r_Pj - r_Pi| (m): tension N = stiffness (L - free_length) +
+// damping L' (N, positive pulling the points together), acting along the line
+// of the two points. L = 0 is an error (no direction).
+struct Spring {
+  std::string name;
+  std::string body_i, point_i = "origin";
+  std::string body_j, point_j = "origin";
+  double stiffness_N_per_m = 0.0;
+  double damping_Ns_per_m = 0.0;
+  double free_length_m = 0.0;
+};
+
 // Constant force (world frame, N) at a body point.
 struct PointForce {
   std::string name;
@@ -121,6 +144,7 @@ struct Model {
   std::vector<Body> bodies;
   std::vector<Joint> joints;
   std::vector<MotionDrive> motion_drives;
+  std::vector<Spring> springs;
   std::vector<PointForce> point_forces;
   Eigen::Vector3d gravity{0.0, 0.0, -9.80665};  // m/s^2, world frame
   double characteristic_length_m = 1.0;         // scales drift checks

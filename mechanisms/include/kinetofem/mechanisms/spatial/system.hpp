@@ -39,13 +39,39 @@
 //   prismatic    cylindrical rows; angle(f_i -> f_j) - theta_ref = 0   (5)
 //   universal    d = 0; h_i.h_j = 0                              (4)
 //   fixed        d = 0; f_i.h_j = 0, g_i.h_j = 0; angle - theta_ref = 0   (6)
+//   chain        b + r sigma (alpha - psi) - r acos(r / rho) - L = 0    (1)
 //   drive        s(q) - s_0 - law(t) = 0, s the angle or h_i.d (1)
 // Angle rows are wrapped to (-pi, pi], so multi-turn motion stays continuous.
+//
+// Chain (SPEC §1, the planar core's row written in the plane normal to h_i):
+// the hinge P_i on body_i, the roller of radius r on body_j centred at P_j,
+// e = r_Pi - r_Pj = -d and its coordinates in body_i's frame, x = f_i.e,
+// y = g_i.e (its part along h_i does not count: the chain lies in the plane);
+// rho = sqrt(x^2 + y^2) > r, b = sqrt(rho^2 - r^2) the free straight length,
+// psi = atan2(y, x) the direction of the hinge seen from the centre and
+// alpha = atan2(g_i.f_j, f_i.f_j) the roller's angle, both from f_i about h_i;
+// sigma = +1 when the chain, followed from the hinge onto the roller, turns
+// counter-clockwise about h_i. The tangent point is at the angle
+// tau = psi + sigma acos(r / rho) and the wrapped angle is sigma (alpha - tau),
+// so the row is free length + r * wrapped angle - L,
+//     Phi = G(rho) - r sigma psi + r sigma alpha - L,   G = b - r acos(r / rho),
+// taken modulo 2 pi r nearest to zero (multi-turn winding stays continuous).
+// It is a function F(x, y) + r sigma alpha of three rows built as above, so
+// its Jacobian and quadratic term follow from the chain rule with
+//     G' = b / rho,  G'' = r^2 / (rho^2 b),  F_x = (b x + sigma r y) / rho^2,
+//     F_y = (b y - sigma r x) / rho^2,
+// F_xx = G'' x^2/rho^2 + G' y^2/rho^3 - 2 r sigma x y / rho^4 and likewise
+// (system.cpp). With body_i the ground and h_i = z these are the planar row
+// (F_x, F_y = g, the unit vector from the tangent point to the hinge). Its
+// multiplier is the chain tension (N), positive when pulling: the load on the
+// hinge, -F_e lambda, pulls it toward the tangent point.
 //
 // Equations of motion with multipliers lambda:
 //     M v' + Pi^T lambda = Q(q, v, t) - h(v),   h_k = (0, w_k~ J_k w_k)  (gyroscopic),
 // Q: gravity on the centre of mass, point forces (force world, moment
-// s'~ A^T F in body axes). The constraint load on body k is -Pi(rows, k)^T lambda:
+// s'~ A^T F in body axes), springs and dampers: N = k (L - L0) + c L' along
+// u = (r_Pj - r_Pi) / L, the force N u on body_i at P_i and -N u on body_j at
+// P_j, L' = u . (r_Pj' - r_Pi'). The constraint load on body k is -Pi(rows, k)^T lambda:
 // a force (world) and a moment about the centre of mass in body axes.
 #include <string>
 #include <vector>
@@ -76,7 +102,8 @@ struct ConstraintBlock {
   int body_i = -1, body_j = -1;           // indices into model().bodies
   Eigen::Vector3d s_i, s_j;               // joint points relative to the centre of mass, body axes
   Eigen::Vector3d h_i, f_i, g_i, h_j, f_j;  // unit vectors, body axes
-  double reference = 0.0;                 // prismatic/fixed theta_ref, drive s_0
+  double reference = 0.0;                 // prismatic/fixed theta_ref, chain L (m), drive s_0
+  double radius_m = 0.0, sigma = 1.0;     // chain: roller radius, +1 counter-clockwise wrap about h_i
   const MotionLaw* law = nullptr;         // drives; the shared_ptr in model().motion_drives owns it
   int source = -1;                        // index into joints or motion_drives
   std::vector<bool> length_row;
@@ -148,11 +175,11 @@ class System {
 
   // M = blockdiag(m I3, J), 6nb x 6nb, constant.
   Eigen::MatrixXd mass_matrix() const;
-  // Q - h: gravity, point forces, minus the gyroscopic terms (6nb).
+  // Q - h: gravity, point forces, springs and dampers, minus the gyroscopic terms (6nb).
   Eigen::VectorXd forces(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) const;
 
   double kinetic_energy(const Eigen::VectorXd& v) const;
-  double potential_energy(const Eigen::VectorXd& q) const;  // gravity
+  double potential_energy(const Eigen::VectorXd& q) const;  // gravity and springs
   // Angular momentum of the moving bodies about a world point (world axes).
   Eigen::Vector3d angular_momentum(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                    const Eigen::Vector3d& about_world) const;
