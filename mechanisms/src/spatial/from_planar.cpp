@@ -27,7 +27,7 @@ Body lift_body(const mech::Body& b) {
   // The polar rule of a lamina for the out-of-plane moments (from_planar.hpp: why harmless).
   out.inertia_kgm2 = Vector3d(0.5 * b.inertia_kgm2, 0.5 * b.inertia_kgm2, b.inertia_kgm2).asDiagonal();
   for (const auto& [name, p] : b.points) out.points[name] = lift(p);
-  for (const mech::PointMass& pm : b.point_masses) out.point_masses.push_back({pm.name, pm.mass_kg, lift(pm.position_body), {}});
+  for (const mech::PointMass& pm : b.point_masses) out.point_masses.push_back({pm.name, pm.mass_kg, lift(pm.position_body), Eigen::Matrix3d::Zero()});
   out.position = {b.pose.x(), b.pose.y(), 0.0};
   out.euler_parameters = axis_angle(Vector3d::UnitZ(), b.pose.z());
   out.velocity = {b.velocity.x(), b.velocity.y(), 0.0};
