@@ -2,8 +2,12 @@
 // spherical-coordinate 3-DoF manipulator with a payload, sized by the
 // source's rules, moving its gripper point M along a straight segment with
 // the trapezoidal speed law; inverse kinematics, kinetostatic inverse dynamics
-// (drive efforts, pair reactions, power) as histories, and the CVODES
-// forward-dynamics cross-check. Model: mechanisms/spherical_manipulator.hpp.
+// (drive efforts, pair reactions, power) as histories, the CVODES
+// forward-dynamics cross-check, and the same kinetostatics through the spatial
+// multibody core compared with the closed form (an error beyond
+// kClosedFormAgreement). Model: mechanisms/spherical_manipulator.hpp and
+// mechanisms/spatial/spherical_manipulator_model.hpp.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -12,6 +16,8 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/units.hpp"
+#include "kinetofem/mechanisms/spatial/kinematics.hpp"
+#include "kinetofem/mechanisms/spatial/spherical_manipulator_model.hpp"
 #include "kinetofem/mechanisms/spherical_manipulator.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
@@ -108,6 +114,23 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
       fail("{}: forward-dynamics cross-check: {}", c.path().string(), e.what());
     }
   }
+  // The same motion through the spatial multibody core (absolute coordinates,
+  // multipliers): an independent formulation of the same kinetostatics.
+  mech::spatial::ClosedFormComparison spatial_check;
+  mech::spatial::RunSummary spatial_run;
+  try {
+    const mech::spatial::System system(mech::spatial::spherical_manipulator_model(design, *motion));
+    const mech::spatial::Results spatial = mech::spatial::run_kinematics(system, times);
+    spatial_check = mech::spatial::compare_with_closed_form(design, *motion, spatial);
+    spatial_run = spatial.summary;
+  } catch (const Error& e) {
+    fail("{}: spatial multibody core cross-check: {}", c.path().string(), e.what());
+  }
+  require(spatial_check.largest() <= mech::spatial::kClosedFormAgreement,
+          "{}: spatial multibody core vs closed form: max relative difference {:.2e} exceeds {:.0e} (M10d {:.2e}, "
+          "M21d {:.2e}, F32d {:.2e}, reaction forces {:.2e}, moments {:.2e})",
+          c.path().string(), spatial_check.largest(), mech::spatial::kClosedFormAgreement, spatial_check.drive(0),
+          spatial_check.drive(1), spatial_check.drive(2), spatial_check.reaction_force, spatial_check.reaction_moment);
 
   MechanismCaseSummary summary;
   summary.results_file = mechanism_results_path(c, options, name);
@@ -152,6 +175,11 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
   if (forward_deviation >= 0)
     std::printf("  forward dynamics (CVODES, efforts fed back, %ld steps): max |M_simulated - M_planned| = %.3g m\n",
                 forward_steps, forward_deviation);
+  std::printf("  spatial multibody core vs closed form: max relative difference %.2e (drive efforts %.2e, reactions "
+              "%.2e; limit %.0e), drift %.2e of the arm length\n",
+              spatial_check.largest(), spatial_check.drive.maxCoeff(),
+              std::max(spatial_check.reaction_force, spatial_check.reaction_moment), mech::spatial::kClosedFormAgreement,
+              spatial_run.max_drift_relative);
   std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());
   return summary;
 }

@@ -142,6 +142,10 @@ struct ClosedFormComparison {
   double reaction_moment = 0.0;
   double largest() const { return std::max({drive.maxCoeff(), reaction_force, reaction_moment}); }
 };
+// What a run may differ from the closed form and still count as agreeing
+// (largest()): the formulations agree to ~1e-13 and the slender bars' axial
+// inertia (above) moves the loads by up to ~2e-10.
+inline constexpr double kClosedFormAgreement = 1e-8;
 ClosedFormComparison compare_with_closed_form(const SphericalDesign& design, const StraightLineMotion& motion,
                                               const Results& run);
 
