@@ -39,14 +39,14 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
                      double equilibrium_tolerance)
     : link_(link),
       tolerance_(equilibrium_tolerance),
-      motion_loads_(model_of(link).mesh, fem::element_materials(model_of(link))) {
+      patterns_(model_of(link)) {
   const fem::Mesh& mesh = link.model->mesh;
   for (size_t b = 0; b < model.bodies.size(); ++b)
     if (model.bodies[b].name == link.body) body_index_ = int(b);
   require(body_index_ >= 0, "link '{}': the mechanism has no body of that name", link.body);
   const mech::Body& body = model.bodies[size_t(body_index_)];
   gravity_world_ = lift(model.gravity);
-  length_scale_ = std::max(1e-3, (mesh.nodes.colwise().maxCoeff() - mesh.nodes.colwise().minCoeff()).norm());
+  const double length_scale = patterns_.length_scale_m();
   // The z of a face's centroid: where the loads through it act along the
   // pins (header). A face centred on the mid-plane to within 1e-6 of the
   // part's size lies on it: the unstructured mesh of a symmetric bore puts
@@ -54,8 +54,8 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
   // not of design, that would otherwise give every planar link spurious
   // out-of-plane moments.
   auto face_z = [&](int coupling) {
-    const double z = couplings_[size_t(coupling)]->centroid().z();
-    return std::abs(z) <= 1e-6 * length_scale_ ? 0.0 : z;
+    const double z = patterns_.coupling(coupling).centroid().z();
+    return std::abs(z) <= 1e-6 * length_scale ? 0.0 : z;
   };
 
   for (const auto& attachment : link.joints) {
@@ -96,7 +96,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
         break;
     }
     mesh.face_set(attachment.face_set);  // throws naming the sets present
-    a.coupling = coupling_on(attachment.face_set);
+    a.coupling = patterns_.coupling_on(attachment.face_set);
     a.bore.axis_point_m.z() = face_z(a.coupling);
     has_bearing_pressure_ = has_bearing_pressure_ || a.distribution == BoreLoad::BearingPressure;
     if (a.distribution == BoreLoad::Contact) {
@@ -104,11 +104,11 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
         require(other.bore.face_set != attachment.face_set,
                 "link '{}': joints '{}' and '{}' are both in contact with face set '{}': one pin per bore",
                 link.body, other.joint, joint.name, attachment.face_set);
-      const Eigen::Vector3d centre = couplings_[size_t(a.coupling)]->centroid();
+      const Eigen::Vector3d centre = patterns_.coupling(a.coupling).centroid();
       double radius = 0.0;
-      for (const fem::Index n : couplings_[size_t(a.coupling)]->nodes())
+      for (const fem::Index n : patterns_.coupling(a.coupling).nodes())
         radius += (mesh.nodes.row(n).transpose() - centre).head<2>().norm() /
-                  double(couplings_[size_t(a.coupling)]->nodes().size());
+                  double(patterns_.coupling(a.coupling).nodes().size());
       double clearance = 0.0;
       try {
         clearance = radial_clearance(attachment.clearance_m, attachment.fit, 2 * radius);
@@ -137,7 +137,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
       }
     require(found, "link '{}': the body carries no point mass '{}'", link.body,
             attachment.point_mass);
-    m.coupling = coupling_on(attachment.face_set);
+    m.coupling = patterns_.coupling_on(attachment.face_set);
     m.position_body.z() = face_z(m.coupling);
     masses_.push_back(std::move(m));
   }
@@ -177,7 +177,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     require(coordinate->body_i == link.body || coordinate->body_j == link.body,
             "link '{}': drive '{}' does not act on it", link.body, d.name);
     d.on_j = coordinate->body_j == link.body;
-    d.coupling = coupling_on(attachment.face_set);
+    d.coupling = patterns_.coupling_on(attachment.face_set);
     if (coordinate->type == mech::CoordinateType::Displacement) {
       const double length = coordinate->axis_i.norm();
       require(length > 0 && std::isfinite(length), "link '{}': drive '{}': its axis has zero length", link.body, d.name);
@@ -207,7 +207,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
             "link '{}': transmission '{}' does not act on it through its {} coordinate", link.body, t.name,
             input ? "input" : "output");
     t.on_j = coordinate.body_j == link.body;
-    t.coupling = coupling_on(attachment.face_set);
+    t.coupling = patterns_.coupling_on(attachment.face_set);
     transmissions_.push_back(std::move(t));
   }
   model_springs_ = model.springs;
@@ -228,7 +228,7 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
             s.name);
     s.on_i = sp.body_i == link.body;
     s.point_body = lift(s.on_i ? spring_point_i_[size_t(s.spring_index)] : spring_point_j_[size_t(s.spring_index)]);
-    s.coupling = coupling_on(attachment.face_set);
+    s.coupling = patterns_.coupling_on(attachment.face_set);
     s.point_body.z() = face_z(s.coupling);
     springs_.push_back(std::move(s));
   }
@@ -242,24 +242,10 @@ LinkLoads::LinkLoads(const LinkDefinition& link, const mech::MultibodyModel& mod
     require(found->body == link.body, "link '{}': point force '{}' acts on body '{}'", link.body, f.name, found->body);
     f.force_world = lift(found->force_world);
     f.point_body = lift(point_of(body_index_, found->point));
-    f.coupling = coupling_on(attachment.face_set);
+    f.coupling = patterns_.coupling_on(attachment.face_set);
     f.point_body.z() = face_z(f.coupling);
     point_forces_.push_back(std::move(f));
   }
-  const Eigen::MatrixXd& basis = motion_loads_.basis();
-  for (int k = 0; k < 12; ++k) {
-    Eigen::Vector3d F, M;
-    fem::resultant(mesh, basis.col(k), Eigen::Vector3d::Zero(), F, M);
-    body_force_resultants_.col(k) << F, M;
-  }
-}
-
-int LinkLoads::coupling_on(const std::string& face_set) {
-  for (size_t j = 0; j < coupling_face_sets_.size(); ++j)
-    if (coupling_face_sets_[j] == face_set) return int(j);
-  couplings_.push_back(std::make_unique<fem::DistributingCoupling>(link_.model->mesh, face_set));
-  coupling_face_sets_.push_back(face_set);
-  return int(couplings_.size()) - 1;
 }
 
 LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
@@ -273,17 +259,18 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
 
   LoadState out;
   out.body_force = fem::RigidBodyMotionLoads::coefficients(R_T * gravity_world_, R_T * a_origin_world, omega, alpha);
-  out.coupling.assign(couplings_.size(), Vector6d::Zero());
+  out.coupling.assign(size_t(patterns_.coupling_count()), Vector6d::Zero());
+  const double length_scale = patterns_.length_scale_m();
   // A resultant (force, moment about `point`) entering through coupling j,
   // kept as force and moment about the coupling's centroid.
   auto through = [&](int j, const Eigen::Vector3d& force, const Eigen::Vector3d& moment, const Eigen::Vector3d& point) {
     Vector6d& r = out.coupling[size_t(j)];
     r.head<3>() += force;
-    r.tail<3>() += moment + (point - couplings_[size_t(j)]->centroid()).cross(force);
+    r.tail<3>() += moment + (point - patterns_.coupling(j).centroid()).cross(force);
   };
-  double magnitude = motion_loads_.mass_kg() *
+  double magnitude = patterns_.body_force().mass_kg() *
                      (gravity_world_.norm() + a_origin_world.norm() +
-                      length_scale_ * (alpha.norm() + omega.squaredNorm()));
+                      length_scale * (alpha.norm() + omega.squaredNorm()));
 
   for (const auto& a : joints_) {
     const mech::JointFrame& jf = frame.joints.at(size_t(a.joint_index));
@@ -300,7 +287,7 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
     } else {
       through(a.coupling, force, moment, point);
     }
-    magnitude += force.norm() + std::abs(r.moment_Nm) / length_scale_;
+    magnitude += force.norm() + std::abs(r.moment_Nm) / length_scale;
   }
   for (const auto& m : masses_) {
     const Eigen::Vector3d r_world = R_T.transpose() * m.position_body;
@@ -314,8 +301,8 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
     const double effort = frame.drives.at(size_t(d.drive_index)).effort;
     if (!d.displacement) {
       const Eigen::Vector3d moment(0, 0, d.on_j ? effort : -effort);
-      through(d.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(d.coupling)]->centroid());
-      magnitude += std::abs(effort) / length_scale_;
+      through(d.coupling, Eigen::Vector3d::Zero(), moment, patterns_.coupling(d.coupling).centroid());
+      magnitude += std::abs(effort) / length_scale;
       continue;
     }
     // s = t . (r_Pj - r_Pi), t = axis_i turned with body_i: the effort pushes
@@ -332,16 +319,16 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
     const Eigen::Vector3d force_world(sign * effort * t.x(), sign * effort * t.y(), 0.0);
     const double couple = d.on_j ? 0.0 : effort * (t.x() * span.y() - t.y() * span.x());
     Eigen::Vector3d point = lift(d.on_j ? d.point_j : d.point_i);
-    point.z() = couplings_[size_t(d.coupling)]->centroid().z();
+    point.z() = patterns_.coupling(d.coupling).centroid().z();
     through(d.coupling, R_T * force_world, Eigen::Vector3d(0, 0, couple), point);
-    magnitude += std::abs(effort) + std::abs(couple) / length_scale_;
+    magnitude += std::abs(effort) + std::abs(couple) / length_scale;
   }
   for (const auto& tr : transmissions_) {
     const mech::TransmissionFrame& tf = frame.transmissions.at(size_t(tr.transmission_index));
     const double side_moment = tr.side == TransmissionSide::Input ? tf.moment_input_Nm : tf.moment_output_Nm;
     const Eigen::Vector3d moment(0, 0, tr.on_j ? side_moment : -side_moment);
-    through(tr.coupling, Eigen::Vector3d::Zero(), moment, couplings_[size_t(tr.coupling)]->centroid());
-    magnitude += std::abs(side_moment) / length_scale_;
+    through(tr.coupling, Eigen::Vector3d::Zero(), moment, patterns_.coupling(tr.coupling).centroid());
+    magnitude += std::abs(side_moment) / length_scale;
   }
 
   for (const auto& sp : springs_) {
@@ -373,16 +360,9 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
     magnitude += force.norm();
   }
 
-  // Resultant (force; moment about the origin) of everything so far: the
-  // couplings' nodal forces are statically equivalent to their resultants
-  // exactly, so it is taken from the resultants, not from nodal forces.
+  // Resultant (force; moment about the origin) of everything so far.
   auto total_resultant = [&] {
-    Vector6d total = body_force_resultants_ * out.body_force;
-    for (size_t j = 0; j < couplings_.size(); ++j) {
-      const Vector6d& r = out.coupling[j];
-      total.head<3>() += r.head<3>();
-      total.tail<3>() += r.tail<3>() + couplings_[j]->centroid().cross(r.head<3>());
-    }
+    Vector6d total = patterns_.resultant(out.body_force, out.coupling);
     if (out.bearing_forces.size() > 0) {
       Eigen::Vector3d F, M;
       fem::resultant(mesh, out.bearing_forces, Eigen::Vector3d::Zero(), F, M);
@@ -407,7 +387,7 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
       for (const auto& a : joints_) pins.push_back(a.coupling);
     if (!pins.empty()) {
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (const int p : pins) centre += couplings_[size_t(p)]->centroid();
+      for (const int p : pins) centre += patterns_.coupling(p).centroid();
       centre /= double(pins.size());
       const Vector6d total = total_resultant();
       const Eigen::Vector3d F_all = total.head<3>();
@@ -415,7 +395,7 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
       const double n = double(pins.size());
       const Eigen::Vector3d force(0.0, 0.0, -F_all.z() / n);
       const Eigen::Vector3d moment(-M_centre.x() / n, -M_centre.y() / n, 0.0);
-      for (const int p : pins) through(p, force, moment, couplings_[size_t(p)]->centroid());
+      for (const int p : pins) through(p, force, moment, patterns_.coupling(p).centroid());
       out.out_of_plane_moment_nm = M_centre.head<2>().norm();
       out.out_of_plane_force_n = std::abs(F_all.z());
     }
@@ -423,7 +403,7 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
 
   const Vector6d total = total_resultant();
   out.equilibrium_residual =
-      magnitude > 0 ? std::max(total.head<3>().norm(), total.tail<3>().norm() / length_scale_) / magnitude : 0.0;
+      magnitude > 0 ? std::max(total.head<3>().norm(), total.tail<3>().norm() / length_scale) / magnitude : 0.0;
   if (!(out.equilibrium_residual <= tolerance_) && !link_.held_on_foundation)
     fail("link '{}' at t = {:.6g} s: the transferred loads are out of equilibrium by {:.2e} of "
          "their magnitude (resultant {:.4g} N, {:.4g} N m; tolerance {:.0e}): the multibody body "
@@ -435,10 +415,7 @@ LinkLoads::LoadState LinkLoads::state_at(const mech::Frame& frame) const {
 LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
   const LoadState state = state_at(frame);
   LinkLoadResult out;
-  out.forces = motion_loads_.basis() * state.body_force;
-  for (size_t j = 0; j < couplings_.size(); ++j)
-    couplings_[j]->add(state.coupling[j].head<3>(), state.coupling[j].tail<3>(), couplings_[j]->centroid(),
-                       out.forces);
+  out.forces = patterns_.nodal_forces(state.body_force, state.coupling);
   if (state.bearing_forces.size() > 0) out.forces += state.bearing_forces;
   out.equilibrium_residual = state.equilibrium_residual;
   out.out_of_plane_moment_nm = state.out_of_plane_moment_nm;
@@ -446,36 +423,12 @@ LinkLoadResult LinkLoads::loads_at(const mech::Frame& frame) const {
   return out;
 }
 
-std::vector<std::string> LinkLoads::pattern_names() const {
-  std::vector<std::string> names = {"body_force.c_x", "body_force.c_y", "body_force.c_z"};
-  for (const char* row : {"x", "y", "z"})
-    for (const char* col : {"x", "y", "z"}) names.push_back(fmt::format("body_force.A_{}{}", row, col));
-  for (const auto& face : coupling_face_sets_)
-    for (const char* c : {"F_x", "F_y", "F_z", "M_x", "M_y", "M_z"}) names.push_back(fmt::format("{}.{}", face, c));
-  return names;
-}
-
-Eigen::MatrixXd LinkLoads::pattern_forces() const {
-  const Eigen::MatrixXd& basis = motion_loads_.basis();
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(basis.rows(), pattern_count());
-  P.leftCols(12) = basis;
-  for (size_t j = 0; j < couplings_.size(); ++j)
-    for (int k = 0; k < 6; ++k) {
-      Vector6d unit = Vector6d::Zero();
-      unit[k] = 1.0;
-      couplings_[j]->add(unit.head<3>(), unit.tail<3>(), couplings_[j]->centroid(), P.col(12 + 6 * Eigen::Index(j) + k));
-    }
-  return P;
-}
-
 LinkLoadCoefficients LinkLoads::coefficients_at(const mech::Frame& frame) const {
   require(superposable(), "link '{}': a bearing pressure is not a combination of fixed load patterns (it turns with "
           "the force); solve it step by step", link_.body);
   const LoadState state = state_at(frame);
   LinkLoadCoefficients out;
-  out.coefficients.resize(pattern_count());
-  out.coefficients.head<12>() = state.body_force;
-  for (size_t j = 0; j < couplings_.size(); ++j) out.coefficients.segment<6>(12 + 6 * Eigen::Index(j)) = state.coupling[j];
+  out.coefficients = patterns_.coefficients(state.body_force, state.coupling);
   out.equilibrium_residual = state.equilibrium_residual;
   out.out_of_plane_moment_nm = state.out_of_plane_moment_nm;
   out.out_of_plane_force_n = state.out_of_plane_force_n;

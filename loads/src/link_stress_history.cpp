@@ -39,13 +39,13 @@ double relative_support_reaction(const Eigen::VectorXd& reaction, const double* 
   return reaction.norm() / load_scale;
 }
 
-void check_support_reaction(LinkEnvelope& env, double relative, const LinkLoads& loads, const mech::Frame& frame,
+void check_support_reaction(LinkEnvelope& env, double relative, const std::string& part, double t,
                             const LinkStressOptions& options) {
   env.worst_support_reaction = std::max(env.worst_support_reaction, relative);
   if (!(relative <= options.reaction_tolerance))
     fail("link '{}' at t = {:.6g} s: the 3-2-1 support carries {:.2e} of the link's total "
          "load; the loads are not self-equilibrated",
-         loads.body(), frame.t, relative);
+         part, t, relative);
 }
 
 // Node i's von Mises stress and deformation magnitude at `step` into the envelope.
@@ -115,7 +115,8 @@ void step_by_step(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, c
       const Eigen::VectorXd f = F.col(Eigen::Index(k));
       // Reactions of the determinate support: (K u - f) at its six DoFs.
       const Eigen::VectorXd reaction = analysis.reactions_at(u, f, supported);
-      check_support_reaction(env, relative_support_reaction(reaction, f.data(), nodes), loads, frames[step], options);
+      check_support_reaction(env, relative_support_reaction(reaction, f.data(), nodes), loads.body(), frames[step].t,
+                             options);
       clock.restart();
       const fem::NodalStress stress = fem::recover_nodal_stress(model.mesh, analysis.materials(), u);
       // Deformation measure: the elastic displacement without the rigid-body
@@ -151,31 +152,21 @@ void append_contact_patterns(const LinkContactHistory& contact, std::vector<std:
   for (Eigen::Index k = 0; k < rank; ++k) names.push_back(fmt::format("contact.shape_{}", k + 1));
 }
 
-void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, const std::vector<mech::Frame>& frames,
-                const LinkContactHistory* contact, const LinkStressOptions& options, const StepCallback& on_step,
-                Progress& progress, const Log& log, LinkEnvelope& env) {
+// Every output time as a combination of the pattern fields (header: the
+// superposition path), whatever built the patterns and their coefficients.
+void superpose_patterns(fem::LinearStaticAnalysis& analysis, const PatternLoadHistory& loads,
+                        const LinkStressOptions& options, const StepCallback& on_step, Progress& progress,
+                        const Log& log, LinkEnvelope& env) {
   const fem::FeModel& model = analysis.model();
   const fem::Index nodes = model.mesh.node_count();
   const std::vector<fem::Index> supported = supported_nodes(model);
-  const Eigen::Index steps = Eigen::Index(frames.size());
+  const Eigen::Index steps = loads.coefficients.cols();
+  const std::vector<std::string>& all_names = loads.names;
+  const Eigen::MatrixXd& all_coefficients = loads.coefficients;
+  const Eigen::MatrixXd& all_patterns = loads.patterns;
+  env.worst_equilibrium_residual = std::max(env.worst_equilibrium_residual, loads.worst_equilibrium_residual);
 
-  // 1. The coefficients of every frame (and the loads' equilibrium checks);
-  // with pins in contact, what remains on the patterns and the contact
-  // forces as patterns of their own.
-  std::vector<std::string> all_names = loads.pattern_names();
-  Eigen::MatrixXd all_coefficients(loads.pattern_count(), steps);
-  for (Eigen::Index t = 0; t < steps; ++t) {
-    const LinkLoadCoefficients c = loads.coefficients_at(frames[size_t(t)]);
-    env.worst_equilibrium_residual = std::max(env.worst_equilibrium_residual, c.equilibrium_residual);
-    env.max_out_of_plane_moment_nm = std::max(env.max_out_of_plane_moment_nm, c.out_of_plane_moment_nm);
-    all_coefficients.col(t) = c.coefficients;
-  }
-  Eigen::MatrixXd all_patterns = loads.pattern_forces();
-  if (contact) {
-    all_coefficients = contact->remaining_coefficients;
-    append_contact_patterns(*contact, all_names, all_patterns, all_coefficients);
-  }
-  // 2. Patterns with a coefficient at some time (a zero row adds exactly 0).
+  // 1. Patterns with a coefficient at some time (a zero row adds exactly 0).
   std::vector<Eigen::Index> kept;
   for (Eigen::Index k = 0; k < all_coefficients.rows(); ++k)
     if ((all_coefficients.row(k).array() != 0.0).any()) kept.push_back(k);
@@ -190,9 +181,9 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
       P.col(k) = all_patterns.col(kept[size_t(k)]);
     }
   }
-  log.detail("  link '{}': unit-load superposition: {} load patterns for {} output times", loads.body(), m, steps);
+  log.detail("  link '{}': unit-load superposition: {} load patterns for {} output times", loads.part, m, steps);
 
-  // 3. One block solve and one stress recovery per pattern.
+  // 2. One block solve and one stress recovery per pattern.
   Stopwatch clock;
   const std::vector<fem::DisplacementField> unit = analysis.solve_forces(P);
   env.solve_seconds += clock.seconds();
@@ -210,7 +201,7 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
     patterns.stress_pa.col(k) = Eigen::Map<const Eigen::VectorXd>(stress.stress_pa.data(), 6 * nodes);
   }
 
-  // 4. Every frame as a combination, in blocks of frames. The products read
+  // 3. Every frame as a combination, in blocks of frames. The products read
   // the pattern fields once per block (memory-bound for small blocks), so
   // blocks are as long as about 256 MB of buffers allow; the buffers are
   // allocated once (fresh ones per block cost more in page faults than the
@@ -238,7 +229,7 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
     for (Eigen::Index k = 0; k < count; ++k) {
       const std::size_t step = std::size_t(first + k);
       const double load_bound = std::max(C.col(k).cwiseAbs().dot(pattern_load), 1e-300);
-      check_support_reaction(env, reactions.col(k).norm() / load_bound, loads, frames[step], options);
+      check_support_reaction(env, reactions.col(k).norm() / load_bound, loads.part, loads.times[step], options);
       const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> s(stress.col(k).data(), 6, nodes);
       const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> e(elastic.col(k).data(), 3, nodes);
       const bool in_envelope = options.envelope_steps == 0 || step < options.envelope_steps;
@@ -262,6 +253,51 @@ void superposed(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads, con
   env.patterns = std::move(patterns);
 }
 
+// The planar loads of every frame as a pattern history; with pins in
+// contact, what remains on the patterns and the contact forces as patterns
+// of their own.
+PatternLoadHistory planar_history(const LinkLoads& loads, const std::vector<mech::Frame>& frames,
+                                  const LinkContactHistory* contact, LinkEnvelope& env) {
+  PatternLoadHistory h;
+  h.part = loads.body();
+  h.names = loads.pattern_names();
+  h.coefficients.resize(loads.pattern_count(), Eigen::Index(frames.size()));
+  for (std::size_t t = 0; t < frames.size(); ++t) {
+    const LinkLoadCoefficients c = loads.coefficients_at(frames[t]);
+    h.worst_equilibrium_residual = std::max(h.worst_equilibrium_residual, c.equilibrium_residual);
+    env.max_out_of_plane_moment_nm = std::max(env.max_out_of_plane_moment_nm, c.out_of_plane_moment_nm);
+    h.coefficients.col(Eigen::Index(t)) = c.coefficients;
+    h.times.push_back(frames[t].t);
+  }
+  h.patterns = loads.pattern_forces();
+  if (contact) {
+    h.coefficients = contact->remaining_coefficients;
+    append_contact_patterns(*contact, h.names, h.patterns, h.coefficients);
+  }
+  return h;
+}
+
+// A fresh envelope for `nodes` nodes (every maximum below any value).
+LinkEnvelope empty_envelope(fem::Index nodes) {
+  LinkEnvelope env;
+  env.max_von_mises_pa = Eigen::VectorXd::Constant(nodes, -1.0);
+  env.max_von_mises_step = Eigen::VectorXi::Zero(nodes);
+  env.max_displacement_m = Eigen::VectorXd::Constant(nodes, -1.0);
+  env.max_displacement_step = Eigen::VectorXi::Zero(nodes);
+  return env;
+}
+
+// The critical instant and place, and the solver's report.
+void finish_envelope(fem::LinearStaticAnalysis& analysis, LinkEnvelope& env) {
+  env.peak_von_mises_pa = env.max_von_mises_pa.maxCoeff(&env.peak_von_mises_node);
+  env.peak_von_mises_step = env.max_von_mises_step[env.peak_von_mises_node];
+  env.peak_displacement_m = env.max_displacement_m.maxCoeff(&env.peak_displacement_node);
+  env.peak_displacement_step = env.max_displacement_step[env.peak_displacement_node];
+  env.solver = analysis.solver_statistics();
+  env.iterative_solver = analysis.uses_iterative_solver();
+  env.solver_summary = analysis.solver_summary();
+}
+
 }  // namespace
 
 LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const LinkLoads& loads,
@@ -280,30 +316,39 @@ LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const
   require(options.load_path != LoadPath::Superposition || loads.superposable(),
           "link '{}': unit-load superposition was asked for, but a joint's cosine bearing pressure is not a "
           "combination of fixed load patterns; use the step-by-step path", loads.body());
-  const fem::Index nodes = analysis.model().mesh.node_count();
-  LinkEnvelope env;
-  env.max_von_mises_pa = Eigen::VectorXd::Constant(nodes, -1.0);
-  env.max_von_mises_step = Eigen::VectorXi::Zero(nodes);
-  env.max_displacement_m = Eigen::VectorXd::Constant(nodes, -1.0);
-  env.max_displacement_step = Eigen::VectorXi::Zero(nodes);
+  LinkEnvelope env = empty_envelope(analysis.model().mesh.node_count());
   env.assembly_seconds = analysis.timings().assembly_seconds;
 
   Progress progress(log, fmt::format("link '{}' time steps", loads.body()), long(frames.size()));
   const bool superpose = options.load_path == LoadPath::Superposition ||
                          (options.load_path == LoadPath::Auto && loads.superposable());
   if (superpose)
-    superposed(analysis, loads, frames, contact, options, on_step, progress, log, env);
+    superpose_patterns(analysis, planar_history(loads, frames, contact, env), options, on_step, progress, log, env);
   else
     step_by_step(analysis, loads, frames, contact, options, on_step, progress, env);
   progress.finish();
-  env.peak_von_mises_pa = env.max_von_mises_pa.maxCoeff(&env.peak_von_mises_node);
-  env.peak_von_mises_step = env.max_von_mises_step[env.peak_von_mises_node];
-  env.peak_displacement_m = env.max_displacement_m.maxCoeff(&env.peak_displacement_node);
-  env.peak_displacement_step = env.max_displacement_step[env.peak_displacement_node];
-  env.solver = analysis.solver_statistics();
-  env.iterative_solver = analysis.uses_iterative_solver();
-  env.solver_summary = analysis.solver_summary();
+  finish_envelope(analysis, env);
   env.contact = std::move(own_contact);
+  return env;
+}
+
+LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& analysis, const PatternLoadHistory& loads,
+                                      const Log& log, const LinkStressOptions& options, const StepCallback& on_step) {
+  const fem::Index nodes = analysis.model().mesh.node_count();
+  require(loads.coefficients.cols() > 0, "link '{}': no output times to analyse", loads.part);
+  require(loads.patterns.cols() == loads.coefficients.rows() &&
+              Eigen::Index(loads.names.size()) == loads.patterns.cols() &&
+              Eigen::Index(loads.times.size()) == loads.coefficients.cols() && loads.patterns.rows() == 3 * nodes,
+          "link '{}': the load history's patterns ({} x {}), names ({}), coefficients ({} x {}) and times ({}) "
+          "disagree with each other or with the mesh ({} nodes)",
+          loads.part, loads.patterns.rows(), loads.patterns.cols(), loads.names.size(), loads.coefficients.rows(),
+          loads.coefficients.cols(), loads.times.size(), nodes);
+  LinkEnvelope env = empty_envelope(nodes);
+  env.assembly_seconds = analysis.timings().assembly_seconds;
+  Progress progress(log, fmt::format("link '{}' time steps", loads.part), long(loads.times.size()));
+  superpose_patterns(analysis, loads, options, on_step, progress, log, env);
+  progress.finish();
+  finish_envelope(analysis, env);
   return env;
 }
 

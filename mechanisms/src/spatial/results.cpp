@@ -113,6 +113,8 @@ Frame make_frame(const System& system, double t, const VectorXd& q, const Vector
         // gamma = law'' - quadratic term, so s'' = Pi v' + law'' - gamma.
         d.s_ddot = b.pi.row(0).dot(gather(system, blk, sol.v_dot)) + law.s_ddot - b.gamma(0);
         d.effort = -lam(0);
+        d.on_i = reaction(system, blk.body_i, blk.s_i, load.head<6>(), q);
+        d.on_j = reaction(system, blk.body_j, blk.s_j, load.tail<6>(), q);
         f.drives.push_back(std::move(d));
         break;
       }

@@ -60,6 +60,7 @@
 
 #include <Eigen/Core>
 
+#include "kinetofem/loads/load_patterns.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
 #include "kinetofem/solver/couplings.hpp"
@@ -202,11 +203,11 @@ class LinkLoads {
   // The pins in contact with the link's bores (BoreLoad::Contact), in the
   // order of the attachments.
   const std::vector<ContactBore>& contact_bores() const { return contact_bores_; }
-  int pattern_count() const { return 12 + 6 * int(couplings_.size()); }
+  int pattern_count() const { return patterns_.count(); }
   // "body_force.c_x" .. "body_force.A_zz", then "<face_set>.F_x" .. ".M_z".
-  std::vector<std::string> pattern_names() const;
+  std::vector<std::string> pattern_names() const { return patterns_.names(); }
   // P, 3 N x pattern_count(), N per unit coefficient.
-  Eigen::MatrixXd pattern_forces() const;
+  Eigen::MatrixXd pattern_forces() const { return patterns_.forces(); }
   // c(t); throws like loads_at (out of equilibrium), also for a link that is
   // not superposable (the bearing pressure has no coefficient).
   LinkLoadCoefficients coefficients_at(const mech::Frame& frame) const;
@@ -218,14 +219,12 @@ class LinkLoads {
   // coupling's centroid) and, for bearing joints, their nodal forces.
   struct LoadState {
     Eigen::Matrix<double, 12, 1> body_force;
-    std::vector<Vector6d> coupling;   // per couplings_ entry
+    std::vector<Vector6d> coupling;   // per coupling of patterns_
     Eigen::VectorXd bearing_forces;   // 3 N; empty without bearing joints
     double equilibrium_residual = 0.0;
     double out_of_plane_moment_nm = 0.0, out_of_plane_force_n = 0.0;
   };
   LoadState state_at(const mech::Frame& frame) const;
-  // Index into couplings_ of the coupling on `face_set` (made on first use).
-  int coupling_on(const std::string& face_set);
 
   struct Attached {
     std::string joint;
@@ -278,11 +277,9 @@ class LinkLoads {
   int body_index_ = -1;
   Eigen::Vector3d gravity_world_ = Eigen::Vector3d::Zero();
   double tolerance_;
-  std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings_;
-  std::vector<std::string> coupling_face_sets_;
+  LoadPatterns patterns_;
   bool has_bearing_pressure_ = false;
   std::vector<ContactBore> contact_bores_;
-  Eigen::Matrix<double, 6, 12> body_force_resultants_;  // force; moment about the origin
   std::vector<Attached> joints_;
   std::vector<Mass> masses_;
   std::vector<Drive> drives_;
@@ -292,8 +289,6 @@ class LinkLoads {
   std::vector<mech::Spring> model_springs_;
   std::vector<int> spring_body_i_, spring_body_j_;  // body indices of each model spring
   std::vector<Eigen::Vector2d> spring_point_i_, spring_point_j_;
-  fem::RigidBodyMotionLoads motion_loads_;
-  double length_scale_ = 1.0;
 };
 
 }  // namespace kinetofem::loads

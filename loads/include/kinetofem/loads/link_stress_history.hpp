@@ -121,4 +121,10 @@ LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& factorized, con
                                       const StepCallback& on_step = {},
                                       const LinkContactHistory* contact = nullptr);
 
+// The superposition path on a pattern history (the same checks, envelope and
+// callback as above); options.load_path and options.solver are not used.
+LinkEnvelope analyse_link_over_motion(fem::LinearStaticAnalysis& factorized, const PatternLoadHistory& loads,
+                                      const Log& log, const LinkStressOptions& options = {},
+                                      const StepCallback& on_step = {});
+
 }  // namespace kinetofem::loads

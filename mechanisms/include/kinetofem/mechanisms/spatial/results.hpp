@@ -58,6 +58,11 @@ struct DriveState {
   std::string name;
   double s = 0.0, s_dot = 0.0, s_ddot = 0.0;  // the driven coordinate (rad or m) and its derivatives
   double effort = 0.0;                         // torque N m (force N) on body_j, reacted on body_i: -lambda
+  // The drive row's load on each body, as a joint's reaction (at the driven
+  // joint's points): what a part that carries the motor or the actuator takes
+  // through its mount. For a translation the pair also holds the couple of
+  // the axis turning with body_i.
+  Reaction on_i, on_j;
 };
 
 struct Frame {
