@@ -78,13 +78,14 @@ Joint lift_joint(const MultibodyModel& m, const mech::Joint& j) {
   return out;
 }
 
-// The lifted joint that carries a planar drive's relative coordinate.
-MotionDrive lift_drive(const MultibodyModel& m, const mech::MotionDrive& d) {
-  const RelativeCoordinate& c = d.coordinate;
-  MotionDrive out;
-  out.name = d.name;
-  out.law = d.law;
-  out.initial = d.initial;
+// The lifted joint and coordinate that carry a planar drive's relative coordinate.
+struct DrivenCoordinate {
+  std::string joint;
+  DriveCoordinate coordinate = DriveCoordinate::Rotation;
+};
+
+DrivenCoordinate driven_coordinate(const MultibodyModel& m, const std::string& drive, const RelativeCoordinate& c) {
+  DrivenCoordinate out;
   for (const mech::Joint& j : m.joints) {
     if (j.body_i != c.body_i || j.body_j != c.body_j) continue;
     switch (c.type) {
@@ -106,11 +107,43 @@ MotionDrive lift_drive(const MultibodyModel& m, const mech::MotionDrive& d) {
       }
     }
   }
-  fail("from_planar of '{}': motion drive '{}' ({} of '{}' against '{}') is not the coordinate of a {} joint from "
+  fail("from_planar of '{}': drive '{}' ({} of '{}' against '{}') is not the coordinate of a {} joint from "
        "'{}' to '{}'{}; the spatial core drives a joint's own coordinate",
-       m.name, d.name, c.type == CoordinateType::Angle ? "angle" : "displacement", c.body_j, c.body_i,
+       m.name, drive, c.type == CoordinateType::Angle ? "angle" : "displacement", c.body_j, c.body_i,
        c.type == CoordinateType::Angle ? "revolute" : "prismatic", c.body_i, c.body_j,
        c.type == CoordinateType::Angle ? "" : " with the same points and axis");
+}
+
+MotionDrive lift_drive(const MultibodyModel& m, const mech::MotionDrive& d) {
+  const DrivenCoordinate c = driven_coordinate(m, d.name, d.coordinate);
+  MotionDrive out;
+  out.name = d.name;
+  out.joint = c.joint;
+  out.coordinate = c.coordinate;
+  out.law = d.law;
+  out.initial = d.initial;
+  return out;
+}
+
+ForceDrive lift_force_drive(const MultibodyModel& m, const mech::ForceDrive& d) {
+  const DrivenCoordinate c = driven_coordinate(m, d.name, d.coordinate);
+  ForceDrive out;
+  out.name = d.name;
+  out.joint = c.joint;
+  out.coordinate = c.coordinate;
+  switch (d.law_type) {
+    case ForceLaw::Constant: out.law_type = EffortLaw::Constant; break;
+    case ForceLaw::DcMotor: out.law_type = EffortLaw::DcMotor; break;
+    case ForceLaw::PdServo: out.law_type = EffortLaw::PdServo; break;
+  }
+  out.value = d.value;
+  out.stall = d.stall;
+  out.no_load_speed = d.no_load_speed;
+  out.kp = d.kp;
+  out.kd = d.kd;
+  out.law = d.law;
+  out.initial = d.initial;
+  return out;
 }
 
 }  // namespace
@@ -119,9 +152,6 @@ Model from_planar(const MultibodyModel& planar) {
   require(planar.transmissions.empty(),
           "from_planar of '{}': {} transmission(s), first '{}': the spatial core has no transmission yet", planar.name,
           planar.transmissions.size(), planar.transmissions.empty() ? "" : planar.transmissions.front().name);
-  require(planar.force_drives.empty(),
-          "from_planar of '{}': {} force drive(s), first '{}': the spatial core has no force drive yet", planar.name,
-          planar.force_drives.size(), planar.force_drives.empty() ? "" : planar.force_drives.front().name);
   Model out;
   out.name = planar.name;
   out.characteristic_length_m = planar.characteristic_length_m;
@@ -129,6 +159,7 @@ Model from_planar(const MultibodyModel& planar) {
   for (const mech::Body& b : planar.bodies) out.bodies.push_back(lift_body(b));
   for (const mech::Joint& j : planar.joints) out.joints.push_back(lift_joint(planar, j));
   for (const mech::MotionDrive& d : planar.motion_drives) out.motion_drives.push_back(lift_drive(planar, d));
+  for (const mech::ForceDrive& d : planar.force_drives) out.force_drives.push_back(lift_force_drive(planar, d));
   for (const mech::Spring& s : planar.springs)
     out.springs.push_back({s.name, s.body_i, point_name(s.point_i), s.body_j, point_name(s.point_j), s.stiffness_N_per_m,
                            s.damping_Ns_per_m, s.free_length_m});

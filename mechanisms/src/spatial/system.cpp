@@ -286,6 +286,47 @@ System::System(Model model) : model_(std::move(model)) {
     n_rows_ += 1;
     blocks_.push_back(std::move(blk));
   }
+  for (const ForceDrive& drive : model_.force_drives) {
+    const ConstraintBlock* joint = nullptr;
+    for (const ConstraintBlock& b : blocks_)
+      if (b.kind == BlockKind::Joint && b.name == drive.joint) joint = &b;
+    require(joint != nullptr, "spatial model '{}', force drive '{}': no joint named '{}'", mname, drive.name,
+            drive.joint);
+    const JointFacts& facts = joint_facts(joint->joint);
+    const bool takes = drive.coordinate == DriveCoordinate::Rotation ? facts.drives_rotation : facts.drives_translation;
+    require(takes, "spatial model '{}', force drive '{}': a {} joint ('{}') has no driven {}", mname, drive.name,
+            facts.name, drive.joint, drive.coordinate == DriveCoordinate::Rotation ? "rotation" : "translation");
+    switch (drive.law_type) {
+      case EffortLaw::Constant:
+        require(std::isfinite(drive.value), "spatial model '{}', force drive '{}': the effort is not finite", mname,
+                drive.name);
+        break;
+      case EffortLaw::DcMotor:
+        require(std::isfinite(drive.stall) && std::isfinite(drive.no_load_speed) && drive.no_load_speed != 0.0,
+                "spatial model '{}', force drive '{}': a DC motor needs a finite stall effort and a finite non-zero "
+                "no-load speed",
+                mname, drive.name);
+        break;
+      case EffortLaw::PdServo:
+        require(drive.law != nullptr && std::isfinite(drive.kp) && std::isfinite(drive.kd),
+                "spatial model '{}', force drive '{}': a PD servo needs a reference motion law and finite gains", mname,
+                drive.name);
+        break;
+    }
+    ConstraintBlock blk = *joint;
+    blk.name = drive.name;
+    blk.kind = BlockKind::Drive;
+    blk.coordinate = drive.coordinate;
+    blk.source = static_cast<int>(force_blocks_.size());
+    blk.rows = 1;
+    blk.length_row = {drive.coordinate == DriveCoordinate::Translation};
+    blk.first_row = -1;
+    blk.law = nullptr;
+    blk.reference = 0.0;
+    const double law0 = drive.law ? drive.law->at(0.0).s : 0.0;
+    blk.reference = drive.initial ? *drive.initial : evaluate(blk, q0, v0, 0.0).phi(0) - law0;
+    force_blocks_.push_back(std::move(blk));
+  }
   for (const PointForce& f : model_.point_forces) {
     const int b = body_index(f.body);
     named_point(b, f.point);
@@ -471,7 +512,7 @@ BlockValues System::evaluate(const ConstraintBlock& blk, const VectorXd& q, cons
   }
   if (last_is_angle || blk.kind == BlockKind::Drive) {
     double target = blk.reference;
-    if (blk.kind == BlockKind::Drive) {
+    if (blk.kind == BlockKind::Drive && blk.law != nullptr) {
       const MotionState law = blk.law->at(t);
       target += law.s;
       out.nu(n - 1) = law.s_dot;
@@ -591,7 +632,33 @@ MatrixXd System::mass_matrix() const {
   return m;
 }
 
-VectorXd System::forces(const VectorXd& q, const VectorXd& v, double /*t*/) const {
+double System::force_drive_effort(int d, const VectorXd& q, const VectorXd& v, double t) const {
+  const ForceDrive& drive = model_.force_drives.at(d);
+  const ConstraintBlock& blk = force_blocks_.at(d);
+  const BlockValues b = evaluate(blk, q, v, t);
+  // s - s_0 (wrapped for a rotation) and s'.
+  Eigen::Matrix<double, 12, 1> local = Eigen::Matrix<double, 12, 1>::Zero();
+  const int ki = moving_index_[blk.body_i], kj = moving_index_[blk.body_j];
+  if (ki >= 0) local.head<6>() = v.segment<6>(6 * ki);
+  if (kj >= 0) local.tail<6>() = v.segment<6>(6 * kj);
+  const double offset = b.phi(0), rate = b.pi.row(0).dot(local);
+  switch (drive.law_type) {
+    case EffortLaw::Constant:
+      return drive.value;
+    case EffortLaw::DcMotor:
+      return drive.stall * (1.0 - rate / drive.no_load_speed);
+    case EffortLaw::PdServo: {
+      const MotionState m = drive.law->at(t);
+      // The tracking error s_0 + law - s, an angle taken in (-pi, pi] so that
+      // the wrapped s does not jump it by a turn.
+      const double error = blk.coordinate == DriveCoordinate::Rotation ? -wrap_angle(offset - m.s) : m.s - offset;
+      return drive.kp * error + drive.kd * (m.s_dot - rate);
+    }
+  }
+  return 0.0;  // unreachable for a valid enum value
+}
+
+VectorXd System::forces(const VectorXd& q, const VectorXd& v, double t) const {
   VectorXd out(n_velocities());
   for (int k = 0; k < n_moving(); ++k) {
     const EffectiveBody& e = effective_[moving_[k]];
@@ -609,6 +676,15 @@ VectorXd System::forces(const VectorXd& q, const VectorXd& v, double /*t*/) cons
   for (const PointForce& f : model_.point_forces) {
     const int b = body_index(f.body);
     add_force(b, relative_point(b, f.point), f.force_world);
+  }
+  for (int d = 0; d < static_cast<int>(force_blocks_.size()); ++d) {
+    // The load the drive row's multiplier -effort would give: Pi^T effort.
+    const ConstraintBlock& blk = force_blocks_[d];
+    const Eigen::Matrix<double, 12, 1> load =
+        evaluate(blk, q, v, t).pi.row(0).transpose() * force_drive_effort(d, q, v, t);
+    const int ki = moving_index_[blk.body_i], kj = moving_index_[blk.body_j];
+    if (ki >= 0) out.segment<6>(6 * ki) += load.head<6>();
+    if (kj >= 0) out.segment<6>(6 * kj) += load.tail<6>();
   }
   for (const Spring& sp : model_.springs) {
     const int bi = body_index(sp.body_i), bj = body_index(sp.body_j);

@@ -30,6 +30,8 @@
 //               same two bodies in the same order; Displacement -> a
 //               Translation drive on the prismatic joint between the same
 //               bodies with the same points and axis; the law and s_0 shared.
+//               Force drives alike, with their laws (Constant, DcMotor,
+//               PdServo -> EffortLaw) and parameters.
 //   loads       gravity (g_x, g_y, 0); point forces (F_x, F_y, 0); springs
 //               and dampers unchanged.
 // Joints and drives keep their names and order, so Frame::joints and
@@ -40,9 +42,9 @@
 // takes the minimum-norm multipliers, which carry nothing under in-plane
 // loads); the in-plane rows are the planar ones.
 //
-// Not lifted (an Error naming the feature and the model): transmissions and
-// force drives (the spatial core has neither yet), a drive whose coordinate is
-// not a joint's as described above.
+// Not lifted (an Error naming the feature and the model): transmissions (the
+// spatial core has none yet: its row spans the four bodies of two joints), a
+// drive whose coordinate is not a joint's as described above.
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/spatial/model.hpp"
 

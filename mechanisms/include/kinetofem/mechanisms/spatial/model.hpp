@@ -1,8 +1,9 @@
 #pragma once
 // spatial::Model — the plain-data description of a spatial linkage: rigid
 // bodies with named points, joints with axes, motion drives on a joint's
-// relative rotation or translation, point masses with rotary inertia, springs
-// with dampers, point forces and gravity, all referred to by name.
+// relative rotation or translation, force drives (motors) on them, point
+// masses with rotary inertia, springs with dampers, point forces and gravity,
+// all referred to by name.
 // spatial::System (system.hpp) checks and compiles it; from_planar.hpp lifts a
 // planar MultibodyModel into it.
 //
@@ -119,6 +120,29 @@ struct MotionDrive {
   std::optional<double> initial;  // s_0; left empty, s(initial poses) - law(0)
 };
 
+// A motor on a joint's relative coordinate s (as a MotionDrive's) with an
+// effort law, torque (N m) about h_i or force (N) along it, applied on body_j
+// and reacted on body_i (the planar core's ForceDrive, multibody/model.hpp):
+//   Constant:  effort = value
+//   DcMotor:   effort = stall (1 - s' / no_load_speed)         (the speed-torque line)
+//   PdServo:   effort = kp (s_0 + law(t) - s) + kd (law'(t) - s')
+// Not a constraint: a load in Q (system.hpp), whose effort at a state
+// System::force_drive_effort gives.
+enum class EffortLaw { Constant, DcMotor, PdServo };
+
+struct ForceDrive {
+  std::string name;
+  std::string joint;
+  DriveCoordinate coordinate = DriveCoordinate::Rotation;
+  EffortLaw law_type = EffortLaw::Constant;
+  double value = 0.0;                    // Constant: N m (N)
+  double stall = 0.0;                    // DcMotor: stall torque N m (force N)
+  double no_load_speed = 0.0;            // DcMotor: rad/s (m/s), non-zero
+  double kp = 0.0, kd = 0.0;             // PdServo: N m/rad, N m s/rad (N/m, N s/m)
+  std::shared_ptr<const MotionLaw> law;  // PdServo reference
+  std::optional<double> initial;         // PdServo s_0; left empty, s(initial poses) - law(0)
+};
+
 // Linear spring and damper between point_i of body_i and point_j of body_j,
 // length L = |r_Pj - r_Pi| (m): tension N = stiffness (L - free_length) +
 // damping L' (N, positive pulling the points together), acting along the line
@@ -144,6 +168,7 @@ struct Model {
   std::vector<Body> bodies;
   std::vector<Joint> joints;
   std::vector<MotionDrive> motion_drives;
+  std::vector<ForceDrive> force_drives;
   std::vector<Spring> springs;
   std::vector<PointForce> point_forces;
   Eigen::Vector3d gravity{0.0, 0.0, -9.80665};  // m/s^2, world frame

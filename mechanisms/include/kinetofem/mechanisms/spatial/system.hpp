@@ -71,7 +71,8 @@
 // Q: gravity on the centre of mass, point forces (force world, moment
 // s'~ A^T F in body axes), springs and dampers: N = k (L - L0) + c L' along
 // u = (r_Pj - r_Pi) / L, the force N u on body_i at P_i and -N u on body_j at
-// P_j, L' = u . (r_Pj' - r_Pi'). The constraint load on body k is -Pi(rows, k)^T lambda:
+// P_j, L' = u . (r_Pj' - r_Pi'); force drives: effort times the Pi row of
+// their coordinate (the load a drive row's multiplier -effort would give). The constraint load on body k is -Pi(rows, k)^T lambda:
 // a force (world) and a moment about the centre of mass in body axes.
 #include <string>
 #include <vector>
@@ -104,7 +105,7 @@ struct ConstraintBlock {
   Eigen::Vector3d h_i, f_i, g_i, h_j, f_j;  // unit vectors, body axes
   double reference = 0.0;                 // prismatic/fixed theta_ref, chain L (m), drive s_0
   double radius_m = 0.0, sigma = 1.0;     // chain: roller radius, +1 counter-clockwise wrap about h_i
-  const MotionLaw* law = nullptr;         // drives; the shared_ptr in model().motion_drives owns it
+  const MotionLaw* law = nullptr;         // motion drives; the shared_ptr in model().motion_drives owns it
   int source = -1;                        // index into joints or motion_drives
   std::vector<bool> length_row;
 };
@@ -175,7 +176,9 @@ class System {
 
   // M = blockdiag(m I3, J), 6nb x 6nb, constant.
   Eigen::MatrixXd mass_matrix() const;
-  // Q - h: gravity, point forces, springs and dampers, minus the gyroscopic terms (6nb).
+  // Effort of force drive d (model().force_drives) at a state: N m or N, on body_j.
+  double force_drive_effort(int d, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) const;
+  // Q - h: gravity, point forces, springs and dampers, force drives, minus the gyroscopic terms (6nb).
   Eigen::VectorXd forces(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) const;
 
   double kinetic_energy(const Eigen::VectorXd& v) const;
@@ -192,6 +195,9 @@ class System {
   std::vector<int> moving_index_;  // per model body
   std::vector<EffectiveBody> effective_;
   std::vector<ConstraintBlock> blocks_;
+  // Force drives' coordinates, compiled as drive rows without a law (reference s_0);
+  // not constraint rows (first_row = -1).
+  std::vector<ConstraintBlock> force_blocks_;
   std::vector<Eigen::Vector4d> fixed_p_;  // per model body: the normalised initial Euler parameters
   int n_rows_ = 0;
 };
