@@ -97,6 +97,11 @@ struct AssemblyModes::Impl {
   Impl(const ElasticAssembly& a, const std::vector<structure::Part>& given, const mech::MultibodyModel& model,
        const AssemblyModesOptions& o, const std::vector<mech::Frame>& poses, const Log& l);
 
+  // Per part, in `parts` order: K, M, Psi and X_0 made once (with the part's
+  // factorization) for both the rule's bound and the final reduction.
+  std::vector<vibration::CraigBamptonReducer> reducers;
+
+  void make_reducers();
   void reduce_parts(const vibration::CraigBamptonOptions& cbo);
   void build_matrices();
 
@@ -269,6 +274,7 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
   }
 
   // The part-mode rule.
+  make_reducers();
   vibration::CraigBamptonOptions cbo;
   if (options.part_mode_cutoff_hz > 0) {
     cbo.highest_frequency_of_interest_hz = options.part_mode_cutoff_hz;
@@ -289,27 +295,36 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     reduce_parts(cbo);
   }
   cutoff = cbo.cutoff_factor * cbo.highest_frequency_of_interest_hz;
+  reducers.clear();  // K, M, Z_G and X_0 of every part: only the reduced models stay
+}
+
+void AssemblyModes::Impl::make_reducers() {
+  reducers.clear();
+  for (PartRed& pr : parts) {
+    std::vector<vibration::PartInterface> interfaces;
+    for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
+    fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(pr.body);
+    analysis.factorize();  // a no-op: the factor is lent while the reductions need it (pipeline::PartFactors)
+    // A part of the ground is reduced held: modes over the free equations.
+    reducers.emplace_back(analysis, interfaces, pr.label, pr.held);
+  }
 }
 
 void AssemblyModes::Impl::reduce_parts(const vibration::CraigBamptonOptions& given_options) {
   reports.clear();
-  for (PartRed& pr : parts) {
-    std::vector<vibration::PartInterface> interfaces;
-    for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
+  for (size_t p = 0; p < parts.size(); ++p) {
+    PartRed& pr = parts[p];
     vibration::CraigBamptonOptions cbo = given_options;
     cbo.eigen.label = pr.label;
-    fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(pr.body);
-    analysis.factorize();  // a no-op: the factor is lent while the reductions need it (pipeline::PartFactors)
+    cbo.solver = options.fixed_interface_solver;
+    pr.cb = reducers[p].reduce(cbo, &log);
     if (pr.held) {
       // Held: modes over the free equations, taken to the mesh's 3N DoFs
       // (zero on the foundation) like a free part's.
-      pr.cb = vibration::reduce_held_craig_bampton(analysis, interfaces, cbo, &log);
-      const fem::DofMap& dofs = analysis.dofs();
+      const fem::DofMap& dofs = assembly.supported_analysis(pr.body).dofs();
       pr.cb.constraint_modes = vibration::expand_to_mesh_dofs(pr.cb.constraint_modes, dofs);
       pr.cb.normal_modes = vibration::expand_to_mesh_dofs(pr.cb.normal_modes, dofs);
       pr.cb.residual_vectors = vibration::expand_to_mesh_dofs(pr.cb.residual_vectors, dofs);
-    } else {
-      pr.cb = vibration::reduce_craig_bampton(analysis, interfaces, cbo, &log);
     }
     require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
             "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,

@@ -37,6 +37,10 @@
 // modes and residual vectors only, no Lanczos) over the poses given; by
 // Rayleigh-Ritz the final frequencies lie below that estimate, so the rule
 // holds for them (checked and printed by check_rule()).
+// One pass per part (vibration::CraigBamptonReducer): K, M, the constraint
+// modes and the static response X_0 are made once and serve both the static
+// reduction (the bound: no solve) and the final one (the fixed-interface
+// modes' block solves only).
 //
 // SI units: Hz, rad/s; x in m, rad, sqrt(kg) m.
 #include <memory>
@@ -60,6 +64,9 @@ struct AssemblyModesOptions {
   int modes = 6;                      // natural frequencies wanted per pose, >= 1
   double part_mode_cutoff_hz = 0.0;   // > 0: fixed-interface modes kept up to it; 0: automatic (header)
   double cutoff_factor = 2.0;         // automatic cutoff = factor x f_max, >= 1
+  // The parts' fixed-interface modes (vibration/craig_bampton.hpp); the
+  // single-vector Lanczos is the reference the block method is tested on.
+  FixedInterfaceSolver fixed_interface_solver = FixedInterfaceSolver::BlockLanczos;
 };
 
 // One part's reduction, for the log and the summary.
