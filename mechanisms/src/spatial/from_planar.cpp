@@ -150,7 +150,9 @@ ForceDrive lift_force_drive(const MultibodyModel& m, const mech::ForceDrive& d) 
 
 Model from_planar(const MultibodyModel& planar) {
   require(planar.transmissions.empty(),
-          "from_planar of '{}': {} transmission(s), first '{}': the spatial core has no transmission yet", planar.name,
+          "from_planar of '{}': {} transmission(s), first '{}': the spatial core has no transmission (its periodic "
+          "relative angles carry no winding count; from_planar.hpp)",
+          planar.name,
           planar.transmissions.size(), planar.transmissions.empty() ? "" : planar.transmissions.front().name);
   Model out;
   out.name = planar.name;

@@ -42,9 +42,13 @@
 // takes the minimum-norm multipliers, which carry nothing under in-plane
 // loads); the in-plane rows are the planar ones.
 //
-// Not lifted (an Error naming the feature and the model): transmissions (the
-// spatial core has none yet: its row spans the four bodies of two joints), a
-// drive whose coordinate is not a joint's as described above.
+// Not lifted (an Error naming the feature and the model): transmissions, and
+// a drive whose coordinate is not a joint's as described above. Why no
+// transmission: the spatial core measures a relative angle as atan2 of body
+// vectors, periodic in 2 pi, and s_out - i s_in is not periodic for a
+// non-integer ratio i; the row would need the joints' winding counts (the
+// SPEC §4 belt arm turns its output eight times), which the planar core's
+// absolute angles carry and the stateless spatial System does not.
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/mechanisms/spatial/model.hpp"
 
