@@ -321,6 +321,20 @@ spatial::Model chain_model(bool wrap_ccw) {
   return m;
 }
 
+TEST(SpatialPlanarEquivalence, ChainHingeInsideTheRollerIsNamed) {
+  spatial::Model m = chain_model(true);
+  m.joints.back().radius_m = 2.0;  // larger than the hinge's distance from the centre
+  try {
+    const spatial::System sys(m);
+    ADD_FAILURE() << "a hinge inside the roller was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("chain 'chain'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("within the roller"), std::string::npos) << e.what();
+  }
+  m.joints.back().radius_m = -0.1;
+  EXPECT_THROW(spatial::System{m}, Error);
+}
+
 TEST(SpatialPlanarEquivalence, ChainRowJacobianAndGammaWithARoller) {
   for (bool ccw : {true, false}) {
     const spatial::System sys(chain_model(ccw));
