@@ -47,6 +47,10 @@ inline const std::vector<std::string> kVectorComponents = {"x", "y", "z"};
 // XX, YY, ZZ, XY, YZ, XZ.
 inline const std::vector<std::string> kVoigtComponents = {"xx", "yy", "zz", "xy", "yz", "zx"};
 inline const std::vector<std::string> kPrincipalComponents = {"1", "2", "3"};
+// A rotation as Euler parameters (e0 the scalar part) and as a 3x3 matrix written row by row
+// (component "xy": row x, column y).
+inline const std::vector<std::string> kEulerParameterComponents = {"e0", "e1", "e2", "e3"};
+inline const std::vector<std::string> kRotationComponents = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
 
 namespace layout {
 inline constexpr const char* kProvenance = "provenance";
@@ -112,6 +116,51 @@ inline constexpr const char* kVibrationResponsePointPrefix = "vibration.response
 inline constexpr const char* kVibrationPointPrefix = "vibration.point.";
 // Optional table (1 x 1, 1): the modal damping ratio zeta of the response.
 inline constexpr const char* kVibrationDampingRatio = "vibration.damping_ratio";
+
+// The spatial mechanism (pipeline/spatial_histories.hpp, docs/results.md): the histories
+// kBodyHistoryPrefix + <b> + "." + a body quantity,
+// kJointHistoryPrefix + <j> + "." + kOnBodyPrefix + <b> + "." + a load quantity,
+// kDriveHistoryPrefix + <d> + "." + a drive quantity (or kOnBodyPrefix + <b> + "." + a load quantity),
+// the energies and checks below, and per rigid body a moving skeleton body kSkeletonBodyPrefix + <b>.
+// The planar histories (pipeline/histories.hpp) use the same prefixes and, where the quantity is
+// the same, the same names.
+inline constexpr const char* kBodyHistoryPrefix = "body.";
+inline constexpr const char* kJointHistoryPrefix = "joint.";
+inline constexpr const char* kDriveHistoryPrefix = "drive.";
+inline constexpr const char* kOnBodyPrefix = "on_";
+// Body quantities (world axes).
+inline constexpr const char* kOrigin = "origin";                            // m, the body frame's origin
+inline constexpr const char* kEulerParameters = "euler_parameters";         // 1, kEulerParameterComponents
+inline constexpr const char* kRotation = "rotation";                        // 1, kRotationComponents: body axes -> world
+inline constexpr const char* kVelocity = "velocity";                        // m/s (also a skeleton's nodal field)
+inline constexpr const char* kAcceleration = "acceleration";                // m/s^2
+inline constexpr const char* kAngularVelocity = "angular_velocity";         // rad/s
+inline constexpr const char* kAngularAcceleration = "angular_acceleration"; // rad/s^2
+inline constexpr const char* kComPosition = "com_position";                 // m, centre of mass with point masses
+inline constexpr const char* kComVelocity = "com_velocity";                 // m/s
+inline constexpr const char* kComAcceleration = "com_acceleration";         // m/s^2
+// Load quantities: a joint's (or drive's) load on one of its bodies, world axes.
+inline constexpr const char* kForceWorld = "force_world";    // N
+inline constexpr const char* kMomentWorld = "moment_world";  // N*m, about kLoadPoint
+inline constexpr const char* kLoadPoint = "point";           // m, the joint point on that body
+// Drive quantities: the driven coordinate (rad or m), its rates, the effort (N*m or N) and power (W).
+inline constexpr const char* kDriveCoordinate = "s";
+inline constexpr const char* kDriveRate = "s_dot";
+inline constexpr const char* kDriveAcceleration = "s_ddot";
+inline constexpr const char* kDriveEffort = "effort";
+inline constexpr const char* kDrivePower = "power";
+// Energies and checks of the run.
+inline constexpr const char* kKineticEnergy = "energy.kinetic";                   // J
+inline constexpr const char* kPotentialEnergy = "energy.potential";               // J, gravity and springs
+inline constexpr const char* kDriftPosition = "check.drift_position";             // m
+inline constexpr const char* kDriftVelocity = "check.drift_velocity";             // m/s
+inline constexpr const char* kEquilibriumResidual = "check.equilibrium_residual"; // 1
+inline constexpr const char* kRedundantRows = "check.redundant_rows";             // 1, constraint rows
+// The skeleton of a rigid body: a mesh in its body frame whose series field kPosition (the
+// nodes' world coordinates) is its geometry at each output time, so ParaView shows it moving;
+// series field kVelocity, static field kBodyPosition (the nodes' body-frame coordinates, m).
+inline constexpr const char* kSkeletonBodyPrefix = "skeleton.";
+inline constexpr const char* kBodyPosition = "body_position";
 
 // The fatigue check (pipeline/part_fatigue.hpp): static nodal fields of each
 // part's body (docs/results.md).
