@@ -19,6 +19,7 @@
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
 #include "kinetofem/mechanisms/spatial/spherical_manipulator_model.hpp"
 #include "kinetofem/mechanisms/spherical_manipulator.hpp"
+#include "kinetofem/pipeline/spatial_histories.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::app {
@@ -118,9 +119,12 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
   // multipliers): an independent formulation of the same kinetostatics.
   mech::spatial::ClosedFormComparison spatial_check;
   mech::spatial::RunSummary spatial_run;
+  mech::spatial::Model spatial_model;
+  mech::spatial::Results spatial;
   try {
-    const mech::spatial::System system(mech::spatial::spherical_manipulator_model(design, *motion));
-    const mech::spatial::Results spatial = mech::spatial::run_kinematics(system, times);
+    spatial_model = mech::spatial::spherical_manipulator_model(design, *motion);
+    const mech::spatial::System system(spatial_model);
+    spatial = mech::spatial::run_kinematics(system, times);
     spatial_check = mech::spatial::compare_with_closed_form(design, *motion, spatial);
     spatial_run = spatial.summary;
   } catch (const Error& e) {
@@ -135,7 +139,8 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
   MechanismCaseSummary summary;
   summary.results_file = mechanism_results_path(c, options, name);
   post::ResultsWriter w(summary.results_file, mechanism_provenance(c, options));
-  w.set_mechanism_time(times);
+  // The spatial run's histories and moving skeleton; it sets the time grid (its frames are at `times`).
+  pipeline::write_spatial_mechanism_histories(w, spatial_model, spatial);
   const std::vector<std::string> xyz = {"x", "y", "z"}, joints = {"phi10", "phi21", "l_BM"};
   w.write_history("M.position", "m", m_pos, xyz);
   w.write_history("M.velocity", "m/s", m_vel, xyz);
