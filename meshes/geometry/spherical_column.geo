@@ -15,11 +15,11 @@ SetFactory("OpenCASCADE");
 
 DefineConstant[
   R_f    = {0.4375, Name "Column/R_f",    Help "floor flange radius [m]"},
-  t_f    = {0.030,  Name "Column/t_f",    Help "floor flange thickness [m]"},
+  t_f    = {0.020,  Name "Column/t_f",    Help "floor flange thickness [m]"},
   R1     = {0.1970, Name "Column/R1",     Help "tube outer radius [m]"},
-  t1     = {0.028,  Name "Column/t1",     Help "tube wall [m]"},
+  t1     = {0.042,  Name "Column/t1",     Help "tube wall [m]"},
   z_top  = {0.464,  Name "Column/z_top",  Help "height of the top plate's upper face [m]"},
-  t_top  = {0.030,  Name "Column/t_top",  Help "top plate thickness [m]"},
+  t_top  = {0.025,  Name "Column/t_top",  Help "top plate thickness [m]"},
   z_seat = {0.414,  Name "Column/z_seat", Help "centre height of the bearing seat [m]"},
   h_seat = {0.050,  Name "Column/h_seat", Help "bearing seat height [m]"},
   h_c    = {0.010,  Name "Column/h_c",    Help "bearing collar radial height [m]"},

@@ -18,7 +18,7 @@ SetFactory("OpenCASCADE");
 DefineConstant[
   l2    = {0.8118, Name "Sleeve/l2",    Help "sleeve length [m]"},
   d2    = {0.2435, Name "Sleeve/d2",    Help "sleeve outer diameter [m]"},
-  t2    = {0.025,  Name "Sleeve/t2",    Help "wall between the guide lands [m]"},
+  t2    = {0.0229, Name "Sleeve/t2",    Help "wall between the guide lands [m]"},
   D_g   = {0.1461, Name "Sleeve/D_g",   Help "guide land bore diameter [m]"},
   l_g   = {0.0731, Name "Sleeve/l_g",   Help "guide land length [m]"},
   d_pin = {0.0609, Name "Sleeve/d_pin", Help "trunnion journal diameter [m]"},

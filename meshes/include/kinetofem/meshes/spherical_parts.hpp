@@ -118,8 +118,8 @@ struct SphericalPartRules {
   double cheek_thickness_ratio = 0.6;    // t_c / d_pin (journal length)
   double lug_width_ratio = 2.5;          // w / d_pin
   double end_plate_ratio = 0.1;          // t_p / D3
-  double flange_thickness_m = 0.030;     // t_f
-  double top_plate_thickness_m = 0.030;  // t_top
+  double flange_thickness_m = 0.020;     // t_f
+  double top_plate_thickness_m = 0.025;  // t_top
   double seat_length_m = 0.050;          // h_seat, bearing seat height
   double seat_collar_m = 0.010;          // h_c, collar radial height
   double lug_margin_m = 0.010;           // R1 beyond the lugs' outer corners
@@ -228,7 +228,10 @@ SphericalPartDimensions spherical_part_dimensions(const SphericalPartSizing& siz
                                                   const SphericalPartRules& rules = {});
 
 // Meshes one part in its body frame; throws Error for invalid dimensions or
-// options, or if Gmsh fails.
+// options, or if Gmsh fails. The arm's elements are at most 3 walls long
+// whatever options.element_size_m says: its tube wall of about 5 mm meshed
+// with elements many times longer than it is thick gives TET10 too flat for
+// Gmsh's high-order untangling (variant B failed at 30 mm).
 fem::Mesh mesh_spherical_part(SphericalPart part, const SphericalPartDimensions& dimensions,
                               const MeshOptions& options);
 
