@@ -188,30 +188,35 @@ void add_bone(fem::Mesh& mesh, fem::Index a, fem::Index b, double ring, double w
 
 // Each body's node positions (world) and velocities at a frame.
 struct SkeletonPose {
-  post::FieldMatrix position, velocity;
+  post::FieldMatrix position, velocity, speed;
 };
 
 SkeletonPose skeleton_pose(const fem::Mesh& mesh, const spatial::BodyState& s) {
-  SkeletonPose out{post::FieldMatrix(mesh.node_count(), 3), post::FieldMatrix(mesh.node_count(), 3)};
-  for (fem::Index n = 0; n < mesh.node_count(); ++n) {
+  const fem::Index n_nodes = mesh.node_count();
+  SkeletonPose out{post::FieldMatrix(n_nodes, 3), post::FieldMatrix(n_nodes, 3), post::FieldMatrix(n_nodes, 1)};
+  for (fem::Index n = 0; n < n_nodes; ++n) {
     const Vector3d x = s.origin + s.rotation * mesh.nodes.row(n).transpose();
+    const Vector3d v = s.com_velocity + s.angular_velocity.cross(x - s.com);
     out.position.row(n) = x.transpose();
-    out.velocity.row(n) = (s.com_velocity + s.angular_velocity.cross(x - s.com)).transpose();
+    out.velocity.row(n) = v.transpose();
+    out.speed(n, 0) = v.norm();
   }
   return out;
 }
 
 void write_skeletons(post::ResultsWriter& w, const spatial::Model& m, const spatial::Results& res) {
+  const std::string speed = layout::magnitude_name(layout::kVelocity);
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const fem::Mesh mesh = spatial_skeleton_mesh(m, b);
     post::BodyWriter& body = w.add_body(clean(layout::kSkeletonBodyPrefix + m.bodies[b].name), mesh);
     body.write_static(layout::kBodyPosition, "m", mesh.nodes, post::kVectorComponents);
     body.begin_series({{.name = layout::kPosition, .units = "m", .components = 3,
                         .component_names = post::kVectorComponents, .geometry = true},
-                       {layout::kVelocity, "m/s", 3, post::kVectorComponents}});
+                       {layout::kVelocity, "m/s", 3, post::kVectorComponents},
+                       {speed, "m/s", 1, {}}});
     for (const spatial::Frame& f : res.frames) {
       const SkeletonPose pose = skeleton_pose(mesh, f.bodies[b]);
-      body.write_step(f.t, {{layout::kPosition, pose.position}, {layout::kVelocity, pose.velocity}});
+      body.write_step(f.t, {{layout::kPosition, pose.position}, {layout::kVelocity, pose.velocity}, {speed, pose.speed}});
     }
   }
 }

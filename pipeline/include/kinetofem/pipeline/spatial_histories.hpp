@@ -48,10 +48,11 @@
 //   a body with one node: an octahedron of half-size kSkeletonWidthPerModel *
 //             characteristic length about it, tips on the body's z axis.
 // Fields: the series position (N x 3, m, world: origin + R x_body; the
-// geometry of each output time, so the body moves in ParaView) and velocity
-// (N x 3, m/s, world: the rigid-body velocity of each node), and the static
-// body_position (N x 3, m, body axes: the node's coordinates in its body
-// frame, which do not change).
+// geometry of each output time, so the body moves in ParaView), velocity
+// (N x 3, m/s, world: the rigid-body velocity of each node) and
+// velocity_magnitude (N x 1, m/s: a scalar to colour by, and for
+// `kinetofem post --field`), and the static body_position (N x 3, m, body
+// axes: the node's coordinates in its body frame, which do not change).
 //
 // Sets the mechanism time grid to the frames' times (ResultsWriter::set_mechanism_time,
 // once per file): a caller with histories of its own on the same times writes them after.

@@ -158,7 +158,8 @@ inline constexpr const char* kEquilibriumResidual = "check.equilibrium_residual"
 inline constexpr const char* kRedundantRows = "check.redundant_rows";             // 1, constraint rows
 // The skeleton of a rigid body: a mesh in its body frame whose series field kPosition (the
 // nodes' world coordinates) is its geometry at each output time, so ParaView shows it moving;
-// series field kVelocity, static field kBodyPosition (the nodes' body-frame coordinates, m).
+// series fields kVelocity and its magnitude (magnitude_name), static field kBodyPosition (the
+// nodes' body-frame coordinates, m).
 inline constexpr const char* kSkeletonBodyPrefix = "skeleton.";
 inline constexpr const char* kBodyPosition = "body_position";
 
