@@ -3,10 +3,12 @@
 // coarse size: the SPEC sizing rules, the mass rule, valid meshes of the
 // analytic volume, every face set where the header puts it, the mating sizes,
 // the column clear of the tilted sleeve, the wall limits and bad inputs named.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 

@@ -14,11 +14,12 @@
 //    (1e-15) is far below what is measured. Measured: column 1.7e-7 ->
 //    6.7e-9, sleeve 1.2e-5 -> 7.0e-7, arm 3.2e-6 -> -1.6e-6 (the mesher's
 //    noise on the thin wall).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
