@@ -5,13 +5,20 @@
 // (drive efforts, pair reactions, power) as histories, the CVODES
 // forward-dynamics cross-check, and the same kinetostatics through the spatial
 // multibody core compared with the closed form (an error beyond
-// kClosedFormAgreement). Model: mechanisms/spherical_manipulator.hpp and
+// kClosedFormAgreement). With [parts] enabled: the column, sleeve and arm as
+// FE parts sized by the SPEC §5 rules (pipeline/spherical_manipulator_parts.hpp),
+// the spatial model with their mass properties, each part's stress over the
+// motion from the spatial loads (unit-load superposition), and with
+// [fatigue] enabled their fatigue over the work cycle. Model:
+// mechanisms/spherical_manipulator.hpp and
 // mechanisms/spatial/spherical_manipulator_model.hpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
+#include "kinetofem/app/common_keys.hpp"
+#include "kinetofem/app/fatigue_keys.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
@@ -19,6 +26,8 @@
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
 #include "kinetofem/mechanisms/spatial/spherical_manipulator_model.hpp"
 #include "kinetofem/mechanisms/spherical_manipulator.hpp"
+#include "kinetofem/pipeline/part_fatigue.hpp"
+#include "kinetofem/pipeline/spherical_manipulator_parts.hpp"
 #include "kinetofem/pipeline/spatial_histories.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
@@ -48,7 +57,15 @@ const std::vector<KeySpec>& spherical_manipulator_schema() {
       {.path = "motion.decel_fraction", .type = Type::Number, .default_number = 0, .min = 0, .max = 1, .doc = "kT; 0: the variant's"},
       {.path = "motion.intervals", .type = Type::Integer, .default_number = 100, .min = 2, .max = 1000000, .doc = "output intervals over the motion (the law's breakpoints are added)"},
       {.path = "check.forward_dynamics", .type = Type::Boolean, .default_number = 1, .doc = "integrate the efforts forward with CVODES and compare M's path with the plan"},
+      {.path = "parts.enabled", .type = Type::Boolean, .default_number = 0, .doc = "mesh the column, sleeve and arm (SPEC §5 sizing, docs/spherical_manipulator_parts.md) and compute their stress over the motion from the spatial multibody loads"},
     });
+    const std::vector<KeySpec> material = material_keys(), mesh = part_mesh_keys(), stress = motion_solver_keys(),
+                               solver = solver_keys();
+    s.insert(s.end(), material.begin(), material.end());
+    s.insert(s.end(), solver.begin(), solver.end());
+    s.insert(s.end(), mesh.begin(), mesh.end());
+    s.insert(s.end(), stress.begin(), stress.end());
+    add_fatigue_keys(s);
     return s;
   }();
   return schema;
@@ -136,10 +153,39 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
           c.path().string(), spatial_check.largest(), mech::spatial::kClosedFormAgreement, spatial_check.drive(0),
           spatial_check.drive(1), spatial_check.drive(2), spatial_check.reaction_force, spatial_check.reaction_moment);
 
+  // The parts: meshed, their mass properties on the spatial model's bodies,
+  // the motion run again with them (the loads then balance on each part).
+  const bool with_parts = c.boolean("parts.enabled");
+  const std::vector<std::string> part_bodies =
+      with_parts ? std::vector<std::string>{"column", "sleeve", "arm"} : std::vector<std::string>{};
+  const std::optional<pipeline::FatigueSettings> fatigue = read_fatigue(c, part_bodies);
+  std::optional<pipeline::SphericalManipulatorParts> parts;
+  auto as_part = [](const pipeline::SpatialPart& p) {
+    pipeline::Part view;
+    view.label = p.label;
+    view.attachments.body = p.attachments.body;
+    view.model = p.model;
+    return view;
+  };
+  if (with_parts) {
+    try {
+      parts = pipeline::spherical_manipulator_parts(design, read_part_mesh_options(c, options.output_dir),
+                                                    read_material(c), log);
+      std::vector<pipeline::Part> as_parts;
+      for (const pipeline::SpatialPart& p : parts->parts) as_parts.push_back(as_part(p));
+      if (fatigue) pipeline::check_fatigue_details(*fatigue, as_parts);
+      pipeline::apply_spatial_mass_properties(spatial_model, parts->parts);
+      spatial = mech::spatial::run_kinematics(mech::spatial::System(spatial_model), times);
+    } catch (const Error& e) {
+      fail("{}: parts: {}", c.path().string(), e.what());
+    }
+  }
+
   MechanismCaseSummary summary;
   summary.results_file = mechanism_results_path(c, options, name);
   post::ResultsWriter w(summary.results_file, mechanism_provenance(c, options));
-  // The spatial run's histories and moving skeleton; it sets the time grid (its frames are at `times`).
+  // The spatial run's histories and moving skeleton; it sets the time grid
+  // (its frames are at `times`). With parts: the run with their masses.
   pipeline::write_spatial_mechanism_histories(w, spatial_model, spatial);
   const std::vector<std::string> xyz = {"x", "y", "z"}, joints = {"phi10", "phi21", "l_BM"};
   w.write_history("M.position", "m", m_pos, xyz);
@@ -156,6 +202,24 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
   w.write_history("pair21.reaction_moment", "N*m", m21, xyz);
   w.write_history("pair10.reaction_force", "N", f10, xyz);
   w.write_history("pair10.reaction_moment", "N*m", m10, xyz);
+  std::vector<pipeline::PartSummary> part_summaries;
+  std::vector<pipeline::PartFatigue> part_fatigue;
+  if (parts) {
+    const loads::LinkStressOptions stress = read_stress_options(c);
+    for (const pipeline::SpatialPart& p : parts->parts) {
+      pipeline::PartStressHistory history;
+      try {
+        part_summaries.push_back(pipeline::analyse_spatial_part_over_motion(p, spatial_model, spatial.frames, w, stress,
+                                                                            log, fatigue ? &history : nullptr));
+        if (fatigue) {
+          part_fatigue.push_back(pipeline::assess_part_fatigue(as_part(p), history, *fatigue, log));
+          pipeline::write_part_fatigue(w.body(p.attachments.body), part_fatigue.back());
+        }
+      } catch (const Error& e) {
+        fail("{}: {}", c.path().string(), e.what());
+      }
+    }
+  }
   w.commit();
 
   const double tc = motion->length() / (speed * (1 - 0.5 * kp - 0.5 * kt));
@@ -185,7 +249,28 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
               spatial_check.largest(), spatial_check.drive.maxCoeff(),
               std::max(spatial_check.reaction_force, spatial_check.reaction_moment), mech::spatial::kClosedFormAgreement,
               spatial_run.max_drift_relative);
+  if (parts) {
+    const meshes::SphericalPartDimensions& d = parts->dimensions;
+    std::printf("  parts (SPEC §5 sizing, walls from the masses; docs/spherical_manipulator_parts.md): column wall "
+                "%.1f mm (%s), sleeve wall %.1f mm (%s), arm D3 %.1f mm wall %.1f mm (%s)\n",
+                d.column.wall_m / kMm, std::string(meshes::wall_rule_name(d.column.wall_rule)).c_str(),
+                d.sleeve.wall_m / kMm, std::string(meshes::wall_rule_name(d.sleeve.wall_rule)).c_str(),
+                d.arm.outer_diameter_m / kMm, d.arm.wall_m / kMm,
+                std::string(meshes::wall_rule_name(d.arm.wall_rule)).c_str());
+    std::printf("  %-8s %9s %9s %14s %12s %16s %12s\n", "part", "mass kg", "nodes", "peak vM MPa", "at t s",
+                "deformation mm", "equilibrium");
+    for (std::size_t k = 0; k < part_summaries.size(); ++k) {
+      const pipeline::PartSummary& ps = part_summaries[k];
+      const mech::spatial::Body& body = *std::find_if(spatial_model.bodies.begin(), spatial_model.bodies.end(),
+                                                      [&](const auto& b) { return b.name == ps.body; });
+      std::printf("  %-8s %9.2f %9ld %14.3f %12.4f %16.4f %12.1e\n", ps.body.c_str(), body.mass_kg, ps.nodes,
+                  ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_displacement_m / kMm,
+                  ps.worst_equilibrium_residual);
+      summary.values.push_back({"peak_von_mises_" + ps.body + "_mpa", ps.peak_von_mises_pa / units::kMpa});
+    }
+  }
   std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());
+  if (!part_fatigue.empty()) report_fatigue(part_fatigue, summary.results_file);
   return summary;
 }
 

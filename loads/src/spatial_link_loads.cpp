@@ -1,9 +1,12 @@
 #include "kinetofem/loads/spatial_link_loads.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Geometry>
+
+#include <fmt/format.h>
 
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
@@ -86,6 +89,43 @@ SpatialLinkLoads::SpatialLinkLoads(const SpatialLinkDefinition& link, const spat
     require(it->body == link.body, "part '{}': point force '{}' acts on body '{}'", link.body, a.name, it->body);
     forces_.push_back({a.name, it->force_world, point_of(it->point), patterns_.coupling_on(a.face_set)});
   }
+  for (const SpatialSlideAttachment& a : link.slides) {
+    Slide sl;
+    sl.attachment = a;
+    const auto joint = std::find_if(model.joints.begin(), model.joints.end(),
+                                    [&](const spatial::Joint& j) { return j.name == a.joint; });
+    require(joint != model.joints.end(), "part '{}': the mechanism has no joint '{}'", link.body, a.joint);
+    require(joint->type == spatial::JointType::Prismatic, "part '{}': slide '{}' is a {} joint, not a prismatic one",
+            link.body, a.joint, spatial::joint_facts(joint->type).name);
+    sl.joint = int(joint - model.joints.begin());
+    sl.guide = joint->body_i == link.body;
+    require(sl.guide || joint->body_j == link.body, "part '{}': slide '{}' does not act on it (it joins '{}' and '{}')",
+            link.body, a.joint, joint->body_i, joint->body_j);
+    for (std::size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == joint->body_i) sl.guide_body = int(b);
+    const double axis_length = joint->axis_i.norm();
+    require(axis_length > 0 && std::isfinite(axis_length), "part '{}': slide '{}': its axis has zero length",
+            link.body, a.joint);
+    sl.axis_i = joint->axis_i / axis_length;
+    if (!a.drive.empty()) {
+      for (std::size_t d = 0; d < model.motion_drives.size(); ++d)
+        if (model.motion_drives[d].name == a.drive) sl.drive = int(d);
+      require(sl.drive >= 0 && model.motion_drives[std::size_t(sl.drive)].joint == a.joint,
+              "part '{}': slide '{}': '{}' is not a motion drive of that joint", link.body, a.joint, a.drive);
+    }
+    require(std::isfinite(a.front_m) && std::isfinite(a.rear_m) && a.front_m != a.rear_m,
+            "part '{}': slide '{}': the lands at {} m and {} m along the axis must be distinct", link.body, a.joint,
+            a.front_m, a.rear_m);
+    if (sl.guide) {
+      sl.front = patterns_.coupling_on(a.front_face_set);
+      sl.rear = patterns_.coupling_on(a.rear_face_set);
+    } else {
+      require(!a.stations.face_sets.empty(), "part '{}': slide '{}': the slide face has no stations", link.body,
+              a.joint);
+      for (const std::string& station : a.stations.face_sets) sl.stations.push_back(patterns_.coupling_on(station));
+    }
+    slides_.push_back(std::move(sl));
+  }
 }
 
 SpatialLinkLoads::State SpatialLinkLoads::state_at(const spatial::Frame& frame) const {
@@ -132,6 +172,48 @@ SpatialLinkLoads::State SpatialLinkLoads::state_at(const spatial::Frame& frame) 
     const Eigen::Vector3d moment = -(m.inertia_kgm2 * alpha_b + omega_b.cross(m.inertia_kgm2 * omega_b));
     through(m.coupling, force, moment, m.position_body);
     magnitude += force.norm() + moment.norm() / length_scale;
+  }
+  for (const Slide& sl : slides_) {
+    // The joint's (and drive's) load on the guide, about its joint point.
+    const spatial::JointState& joint = frame.joints.at(std::size_t(sl.joint));
+    const Eigen::Vector3d p_i = joint.on_i.point_world;
+    Eigen::Vector3d force = joint.on_i.force_world, moment = joint.on_i.moment_world;
+    if (sl.drive >= 0) {
+      const spatial::Reaction& d = frame.drives.at(std::size_t(sl.drive)).on_i;
+      force += d.force_world;
+      moment += d.moment_world + (d.point_world - p_i).cross(d.force_world);
+    }
+    const Eigen::Vector3d h = frame.bodies.at(std::size_t(sl.guide_body)).rotation * sl.axis_i;
+    const Eigen::Vector3d force_along = force.dot(h) * h, moment_along = moment.dot(h) * h;
+    const Eigen::Vector3d force_across = force - force_along, moment_across = moment - moment_along;
+    const double x_front = sl.attachment.front_m, x_rear = sl.attachment.rear_m;
+    const Eigen::Vector3d w = moment_across.cross(h);
+    const Eigen::Vector3d front_across = (w - x_rear * force_across) / (x_front - x_rear);
+    const std::array<Eigen::Vector3d, 2> land_force = {front_across + 0.5 * force_along,
+                                                       force_across - front_across + 0.5 * force_along};
+    const std::array<Eigen::Vector3d, 2> land_point = {p_i + x_front * h, p_i + x_rear * h};
+    const Eigen::Vector3d land_moment = 0.5 * moment_along;
+    magnitude += force.norm() + moment.norm() / length_scale;
+    if (sl.guide) {
+      const std::array<int, 2> coupling = {sl.front, sl.rear};
+      for (int k = 0; k < 2; ++k)
+        through(coupling[std::size_t(k)], R_T * land_force[std::size_t(k)], R_T * land_moment,
+                R_T * (land_point[std::size_t(k)] - s.origin));
+      continue;
+    }
+    // The slider: the same loads reversed, at the stations bracketing each land.
+    const Eigen::Vector3d p_j = joint.on_j.point_world;
+    for (int k = 0; k < 2; ++k) {
+      const double along = h.dot(land_point[std::size_t(k)] - p_j);
+      const StationBracket b = bracket_station(
+          sl.attachment.stations, along,
+          fmt::format("part '{}' at t = {:.6g} s: slide '{}', {} land", link_.body, frame.t, sl.attachment.joint,
+                      k == 0 ? "front" : "rear"));
+      const Eigen::Vector3d f = -(R_T * land_force[std::size_t(k)]), m = -(R_T * land_moment);
+      const Eigen::Vector3d at = R_T * (land_point[std::size_t(k)] - s.origin);
+      through(sl.stations[std::size_t(b.a)], (1.0 - b.weight_b) * f, (1.0 - b.weight_b) * m, at);
+      if (b.b != b.a) through(sl.stations[std::size_t(b.b)], b.weight_b * f, b.weight_b * m, at);
+    }
   }
   for (const Force& f : forces_) {
     through(f.coupling, R_T * f.force_world, Eigen::Vector3d::Zero(), f.point_body);

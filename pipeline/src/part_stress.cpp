@@ -69,12 +69,11 @@ void summarise_contact(const loads::LinkContactHistory& contact, const loads::Li
 
 // The superposition's patterns into the body (motion times only: the static
 // study, solved in the same block, is written as static fields).
-void write_load_patterns(post::BodyWriter& body, loads::LinkLoadPatterns& patterns,
-                         const std::vector<mech::Frame>& motion) {
+void write_load_patterns(post::BodyWriter& body, loads::LinkLoadPatterns& patterns, const std::vector<double>& times) {
   post::LoadPatternData data;
   data.names = patterns.names;
-  for (const auto& frame : motion) data.time_s.push_back(frame.t);
-  data.coefficients = patterns.coefficients.leftCols(Eigen::Index(motion.size()));
+  data.time_s = times;
+  data.coefficients = patterns.coefficients.leftCols(Eigen::Index(times.size()));
   data.elastic_displacement_m = std::move(patterns.elastic_displacement_m);
   data.stress_pa = std::move(patterns.stress_pa);
   body.write_load_patterns(data);
@@ -218,7 +217,11 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     history->pattern_stress_pa = env.patterns->stress_pa;
     history->coefficients = env.patterns->coefficients.leftCols(Eigen::Index(motion.size()));
   }
-  if (env.patterns) write_load_patterns(body, *env.patterns, motion);
+  if (env.patterns) {
+    std::vector<double> times;
+    for (const auto& frame : motion) times.push_back(frame.t);
+    write_load_patterns(body, *env.patterns, times);
+  }
   ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
   ps.worst_support_reaction = env.worst_support_reaction;
   ps.max_out_of_plane_moment_nm = env.max_out_of_plane_moment_nm;
@@ -259,6 +262,100 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
              "loads in equilibrium to {:.1e}, support reactions {:.1e}; out-of-plane moment on the pins up to {:.3g} N m",
              ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0],
              at[1], at[2], env.worst_equilibrium_residual, env.worst_support_reaction, ps.max_out_of_plane_moment_nm);
+  return ps;
+}
+
+PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech::spatial::Model& model,
+                                             const std::vector<mech::spatial::Frame>& motion,
+                                             post::ResultsWriter& writer, const loads::LinkStressOptions& options,
+                                             const Log& log, PartStressHistory* history) {
+  const std::string& name = part.attachments.body;
+  require(!motion.empty(), "{}: no output times to analyse", part.label);
+  require(options.callback_steps.empty() || options.callback_steps.size() == motion.size(),
+          "{}: the field output mask has {} entries for {} output times", part.label, options.callback_steps.size(),
+          motion.size());
+  // Held by a 3-2-1 support on nodes where no load enters (a support node
+  // under a coupling would take part of the load into a reaction that must
+  // vanish; any other node holds only the rigid motion).
+  fem::FeModel supported = part.model;
+  {
+    std::vector<char> loaded(std::size_t(supported.mesh.node_count()), 0);
+    auto mark = [&](const std::string& face_set) {
+      for (const fem::Index n : fem::nodes_of_faces(supported.mesh.face_set(face_set))) loaded[std::size_t(n)] = 1;
+    };
+    const loads::SpatialLinkDefinition& a = part.attachments;
+    for (const auto* list : {&a.joints, &a.point_masses, &a.point_forces})
+      for (const loads::SpatialAttachment& item : *list) mark(item.face_set);
+    // A slide's attachment names the guide's lands and the slider's face;
+    // this part has one side of them.
+    for (const loads::SpatialSlideAttachment& slide : a.slides)
+      for (const std::string* face_set : {&slide.front_face_set, &slide.rear_face_set, &slide.stations.face_set})
+        if (supported.mesh.face_sets.count(*face_set) != 0) mark(*face_set);
+    std::vector<fem::Index> candidates;
+    for (fem::Index i = 0; i < supported.mesh.node_count(); ++i)
+      if (!loaded[std::size_t(i)]) candidates.push_back(i);
+    supported.supports = fem::three_two_one_support(supported.mesh, candidates);
+  }
+  log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", name);
+  fem::LinearStaticAnalysis analysis(supported, log, options.solver);
+  loads::SpatialLinkDefinition definition = part.attachments;
+  definition.model = &supported;
+  const loads::SpatialLinkLoads link_loads(definition, model);
+
+  post::BodyWriter& body = writer.add_body(name, supported.mesh);
+  write_solid_field(body, supported.mesh);
+  body.begin_series({{post::layout::kDisplacement, "m", 3, post::kVectorComponents},
+                     {post::layout::kVonMises, "Pa", 1, {}}});
+  const auto written = [&](std::size_t step) { return options.callback_steps.empty() || options.callback_steps[step]; };
+  const auto on_step = [&](std::size_t step, const fem::DisplacementField& u, const fem::NodalStress& s) {
+    if (written(step))
+      body.write_step(motion[step].t, {{post::layout::kDisplacement, u}, {post::layout::kVonMises, s.von_mises_pa}});
+  };
+  loads::LinkEnvelope env = loads::analyse_link_over_motion(analysis, link_loads.history(motion), log, options, on_step);
+
+  std::vector<double> times;
+  for (const auto& frame : motion) times.push_back(frame.t);
+  const std::vector<double> step_times = options.callback_steps.empty() ? std::vector<double>() : times;
+  body.write_envelope(post::layout::kVonMises, "Pa", env.max_von_mises_pa, env.max_von_mises_step.cast<fem::Index>(),
+                      post::layout::kEnvelopeMax, step_times);
+  body.write_envelope(post::layout::kDisplacementMagnitude, "m", env.max_displacement_m,
+                      env.max_displacement_step.cast<fem::Index>(), post::layout::kEnvelopeMax, step_times);
+  PartSummary ps;
+  ps.body = name;
+  ps.nodes = supported.mesh.node_count();
+  ps.dofs = 3 * ps.nodes;
+  ps.peak_von_mises_pa = env.peak_von_mises_pa;
+  ps.peak_von_mises_time_s = times[std::size_t(env.peak_von_mises_step)];
+  ps.peak_von_mises_node = long(env.peak_von_mises_node);
+  ps.peak_von_mises_at_m = supported.mesh.nodes.row(env.peak_von_mises_node).transpose();
+  ps.peak_displacement_m = env.peak_displacement_m;
+  ps.peak_displacement_time_s = times[std::size_t(env.peak_displacement_step)];
+  ps.factorize_seconds = env.solver.factorize_seconds;
+  ps.solve_seconds = env.solve_seconds;
+  ps.assembly_seconds = env.assembly_seconds;
+  ps.recovery_seconds = env.recovery_seconds;
+  ps.analyze_seconds = env.solver.analyze_seconds;
+  ps.factor_nonzeros = env.solver.factor_nonzeros;
+  ps.factor_bytes = env.solver.factor_bytes;
+  ps.factorization_flops = env.solver.factorization_flops;
+  ps.right_hand_sides = env.solved_right_hand_sides;
+  ps.output_times = long(motion.size());
+  ps.superposed = true;
+  ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
+  ps.worst_support_reaction = env.worst_support_reaction;
+  ps.iterative_solver = env.iterative_solver;
+  ps.solver_summary = env.solver_summary;
+  if (history) {
+    history->source = StressHistorySource::FreeBodyPart;
+    history->pattern_stress_pa = env.patterns->stress_pa;
+    history->coefficients = env.patterns->coefficients;
+  }
+  write_load_patterns(body, *env.patterns, times);
+  const Eigen::Vector3d at = ps.peak_von_mises_at_m / units::kMm;
+  log.info("  {}: peak von Mises {:.3f} MPa at t = {:.4f} s, node {} ({:.1f}, {:.1f}, {:.1f}) mm (body frame); "
+           "loads in equilibrium to {:.1e}, support reactions {:.1e}",
+           ps.body, ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_von_mises_node, at[0], at[1],
+           at[2], env.worst_equilibrium_residual, env.worst_support_reaction);
   return ps;
 }
 

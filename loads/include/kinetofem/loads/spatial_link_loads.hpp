@@ -23,7 +23,10 @@
 //   * each point mass it carries (gripper, casting), the force m (g - a_P) at
 //     the mass's point and, for a mass with rotary inertia J (body axes), the
 //     moment -(J alpha + omega x J omega), through its mount face;
-//   * each constant point force of the model on it, at its point.
+//   * each constant point force of the model on it, at its point;
+//   * a prismatic joint's load (with its drive's, an actuator along the
+//     slide) as a guide takes it on two bearing lands and a slider on the
+//     stations of its slide face (SpatialSlideAttachment).
 // Unlike the planar LinkLoads, nothing is missing out of a plane: the spatial
 // reactions are complete, so the loads are in equilibrium by themselves when
 // the model's body has the FE mesh's mass properties
@@ -38,6 +41,7 @@
 
 #include "kinetofem/loads/link_loads.hpp"
 #include "kinetofem/loads/load_patterns.hpp"
+#include "kinetofem/loads/slide_stations.hpp"
 #include "kinetofem/mechanisms/spatial/model.hpp"
 #include "kinetofem/mechanisms/spatial/results.hpp"
 #include "kinetofem/solver/fe_model.hpp"
@@ -50,6 +54,27 @@ struct SpatialAttachment {
   std::string face_set;  // of the part's mesh
 };
 
+// A prismatic joint whose guide (body_i: a sleeve) bears the slider (body_j:
+// an arm) on two lands. The joint's load on the guide (with its motion
+// drive's, when one is named), a force F and a moment M about the guide's
+// joint point P_i, is split into two land loads at P_i + x h, x = front_m
+// and rear_m, h the slide axis: across the axis the two forces that carry
+// F's transverse part and M's transverse part (w = M_perp x h,
+// F_front = (w - x_rear F_perp) / (x_front - x_rear), F_rear = F_perp - F_front);
+// along the axis and about it, half each. The guide takes them through its
+// land face sets; the slider takes them reversed through the stations of its
+// slide face (slide_stations.hpp, cut along the joint's axis_j from its
+// point P_j) that bracket each land, weighted linearly, so the load enters
+// where the lands are at each output time and stays a combination of fixed
+// patterns.
+struct SpatialSlideAttachment {
+  std::string joint;                          // a prismatic joint of the model
+  std::string drive;                          // its motion drive, or empty
+  double front_m = 0.0, rear_m = 0.0;         // land centres along h from P_i (m), different
+  std::string front_face_set, rear_face_set;  // the guide's lands
+  SlideStations stations;                     // the slider's slide face
+};
+
 struct SpatialLinkDefinition {
   std::string body;                             // body name in the spatial model
   const fem::FeModel* model = nullptr;          // mesh in the body frame; not owned
@@ -58,6 +83,7 @@ struct SpatialLinkDefinition {
   std::vector<SpatialAttachment> point_masses;  // mech::spatial::Body::point_masses of this body
   std::vector<SpatialAttachment> point_forces;  // mech::spatial::Model::point_forces on this body
   bool held_on_foundation = false;              // a part of the ground: no equilibrium check
+  std::vector<SpatialSlideAttachment> slides;   // on the guide or on the slider
 };
 
 // Mass, centre of mass and inertia tensor (about the centre of mass, body
@@ -101,6 +127,15 @@ class SpatialLinkLoads {
     bool on_i = false;   // this body is the block's body_i
     int coupling = -1;
   };
+  struct Slide {
+    SpatialSlideAttachment attachment;
+    int joint = -1, drive = -1;  // into Frame::joints, Frame::drives (-1: none)
+    bool guide = true;           // this body is the joint's body_i (else the slider)
+    Eigen::Vector3d axis_i = Eigen::Vector3d::UnitX();  // h in the guide's frame (unit)
+    int guide_body = -1;
+    int front = -1, rear = -1;   // guide: the lands' couplings
+    std::vector<int> stations;   // slider: the stations' couplings
+  };
   struct Mass {
     std::string name;
     double mass_kg = 0.0;
@@ -122,6 +157,7 @@ class SpatialLinkLoads {
   std::vector<Constraint> constraints_;
   std::vector<Mass> masses_;
   std::vector<Force> forces_;
+  std::vector<Slide> slides_;
 };
 
 }  // namespace kinetofem::loads

@@ -25,7 +25,9 @@
 
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/loads/link_stress_history.hpp"
+#include "kinetofem/loads/spatial_link_loads.hpp"
 #include "kinetofem/mechanisms/multibody/results.hpp"
+#include "kinetofem/mechanisms/spatial/results.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress_history.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
@@ -104,5 +106,25 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
                                      post::ResultsWriter& writer, const loads::LinkStressOptions& options,
                                      const Log& log, const SupportedPart* factorized = nullptr,
                                      PartStressHistory* history = nullptr);
+
+// A part of a spatial mechanism: its mesh in its body's frame of the spatial
+// model (no supports), material, and where each load enters it.
+struct SpatialPart {
+  std::string label;                        // for messages: "part 'arm'"
+  loads::SpatialLinkDefinition attachments; // its `model` is set by the stage
+  fem::FeModel model;
+};
+
+// The same stage for a part of a spatial mechanism (loads::SpatialLinkLoads:
+// the full 3D joint and drive reactions, the inertia of a body turning about
+// any axis, point masses with rotary inertia, slides on their stations), by
+// unit-load superposition on one factorization of the part held by a 3-2-1
+// support (on nodes of no attachment's face set); the same series, envelopes,
+// load patterns and history as above, no static study, no pins in contact.
+// `history` (optional): for the fatigue stage.
+PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech::spatial::Model& model,
+                                             const std::vector<mech::spatial::Frame>& motion,
+                                             post::ResultsWriter& writer, const loads::LinkStressOptions& options,
+                                             const Log& log, PartStressHistory* history = nullptr);
 
 }  // namespace kinetofem::pipeline
