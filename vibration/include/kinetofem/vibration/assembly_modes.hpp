@@ -66,7 +66,7 @@ struct AssemblyModesOptions {
   double cutoff_factor = 2.0;         // automatic cutoff = factor x f_max, >= 1
   // The parts' fixed-interface modes (vibration/craig_bampton.hpp); the
   // single-vector Lanczos is the reference the block method is tested on.
-  FixedInterfaceSolver fixed_interface_solver = FixedInterfaceSolver::BlockLanczos;
+  FixedInterfaceSolver fixed_interface_solver = FixedInterfaceSolver::BlockDavidson;
 };
 
 // One part's reduction, for the log and the summary.

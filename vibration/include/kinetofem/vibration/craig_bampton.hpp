@@ -48,7 +48,7 @@
 //     Z_b = K_s^-1 b,  [mu; alpha] = S^-1 [-G^T Z_b; -R^T b]
 // (the solution of K y = b + G mu with G^T y = 0): its block application to
 // M Psi gives the static response X_0 = K_0^+ M Psi (once per part), and its
-// block Lanczos yields Phi (below). Every solve is with K_s, on blocks of
+// block solves yield Phi (below). Every solve is with K_s, on blocks of
 // right-hand sides.
 // S singular (interfaces that do not hold the part's rigid motion, or
 // dependent boundary coordinates) is an Error.
@@ -60,24 +60,29 @@
 // reduction, AssemblyModes) costs nothing but the small projections, and the
 // final reduction only the fixed-interface modes' solves.
 //
-// Fixed-interface modes by block shift-invert Lanczos (shift 0) on K_0^+ M
-// in the M-inner product, full reorthogonalization, Rayleigh-Ritz with K on
-// the whole basis (FixedInterfaceSolver::BlockLanczos, the default). Start
-// block: X_0 (the interface inertia's static response, rich in the modes the
-// boundary excites) and 4 random fields K_0^+ M v (for the modes it does not
-// excite). Each step is one solve with n_b + 4 right-hand sides (CHOLMOD's
-// block solve of 12 costs about 3 single solves); it stops when every Ritz
-// pair up to the first above the cutoff has the relative residual
+// Fixed-interface modes by a block method on block solves
+// (FixedInterfaceSolver::BlockDavidson, the default): Rayleigh-Ritz with K
+// and M on a growing M-orthonormal basis V inside G^T u = 0, expanded each
+// step by K_0^+ M Y, Y the wanted Ritz vectors not converged yet and the next
+// 2 (block Davidson with the exact inverse as preconditioner: LOBPCG's
+// expansion, every direction kept). Start: X_0 (the interface inertia's
+// static response, rich in the modes the boundary excites) and 4 random
+// fields K_0^+ M v (for those it does not excite). Each step is one block
+// solve; the basis is taken back onto G^T u = 0 at every orthonormalization
+// (round-off magnified off the constraint would let the Ritz values sink
+// below the constrained problem's). Converged: every mode kept with
 //   ||P (K phi - w^2 M phi)|| / (||K phi|| + w^2 ||M phi||) <= residual_tolerance
 // (P: off the interface columns, whose reactions G mu the constrained problem
-// admits); beyond 3 blocks the basis restarts from its lowest Ritz vectors.
-// Why this method: a part's few lowest modes are wanted and each step is an
-// exact solve, so there is no preconditioner to tune (LOBPCG's point; with
-// the exact inverse LOBPCG is this method on a smaller basis), and a Krylov
-// space from the same start converges in fewer solves than subspace
-// iteration, which keeps only the latest block. The single-vector Lanczos of
-// fem::solve_eigen (Spectra) stays as FixedInterfaceSolver::Lanczos, the
-// reference of tests/verification/vibration/test_craig_bampton_one_pass.cpp.
+// admits), the first dropped with sqrt of it (it only has to lie above the
+// cutoff). Why this one, measured on the lever-chain manipulator's links
+// (80 k DoFs, 1 mode kept; docs/vibration.md): the single-vector Lanczos
+// (fem::solve_eigen, Spectra: 33-43 single solves) 1.9-2.5 s; block Lanczos
+// expanding the whole latest block of n_b + 4 (3 blocks) 2.7-3.6 s, the
+// wide block's orthogonalization and products costing more than its solves
+// save; subspace iteration keeps only the latest block and needs more steps
+// than either; this method 0.9-1.0 s (3 steps of 3-4 right-hand sides). The
+// single-vector Lanczos stays as FixedInterfaceSolver::Lanczos, the reference
+// of tests/verification/vibration/test_craig_bampton_one_pass.cpp.
 //
 // Part-mode rule. Keep every fixed-interface mode with
 //   f <= cutoff = cutoff_factor x highest_frequency_of_interest_hz,
@@ -123,7 +128,7 @@ PartInterface nodal_interface(const fem::Mesh& mesh, const std::vector<fem::Inde
 
 // How the fixed-interface modes are solved (header).
 enum class FixedInterfaceSolver {
-  BlockLanczos,  // block shift-invert Lanczos on multi-right-hand-side solves (default)
+  BlockDavidson,  // Rayleigh-Ritz on a basis grown by block solves (default)
   Lanczos,       // fem::solve_eigen (Spectra), one solve per Lanczos vector, growing batches
 };
 
@@ -141,9 +146,9 @@ struct CraigBamptonOptions {
   // highest_frequency_of_interest_hz is then not used.
   bool fixed_interface_modes = true;
   fem::EigenOptions eigen;                        // tolerance, label (modes, shift: set here)
-  FixedInterfaceSolver solver = FixedInterfaceSolver::BlockLanczos;
-  // Block Lanczos: relative residual of every mode kept and of the first
-  // dropped (header). The frequencies' error goes with its square.
+  FixedInterfaceSolver solver = FixedInterfaceSolver::BlockDavidson;
+  // BlockDavidson: relative residual of every mode kept (the first dropped:
+  // its square root; header). The frequencies' error goes with its square.
   double residual_tolerance = 1e-8;
 };
 
