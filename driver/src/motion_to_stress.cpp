@@ -113,7 +113,6 @@ MotionStressRun run_motion_to_stress(const MotionStressCase& c, const Log& log) 
     return 0;
   });
   run.factorization = factors->report();
-  factors->require_stages_fit();
   structure::AssemblyOptions assembly_options;
   std::optional<structure::ElasticAssembly> assembly;
   if (c.assembly) {

@@ -89,7 +89,8 @@ VibrationSummary analyse_vibration_with_factors(const structure::ElasticAssembly
                                                 const VibrationOptions& options, const AssemblySummary& quasi_static,
                                                 const Log& log, PartFactors& factors) {
   VibrationSummary summary = analyse_vibration_over_motion(assembly, parts, model, motion, static_pose, writer,
-                                                           assembly_options, options, quasi_static, log);
+                                                           assembly_options, options, quasi_static, log,
+                                                           &factors.vibration_lender());
   factors.done_all(FactorUser::Vibration);
   return summary;
 }

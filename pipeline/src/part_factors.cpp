@@ -10,20 +10,13 @@ PartFactors::PartFactors(const std::vector<Part>& parts, const fem::StaticSolver
                          std::string label, const Log& log)
     : parts_(parts), stages_(stages), label_(std::move(label)), log_(log) {
   supported_ = factorize_parts(parts, solver, log, &report_);
-  if (stages_.assembly && !factors_fit_together() && !stages_.vibration)
+  if (stages_.assembly && !factors_fit_together())
     log_.info("elastic assembly: one part's factor in memory at a time (the factors exceed the limit together); "
-              "each is freed after its interface and load-pattern solves");
+              "each is freed after its interface and load-pattern solves{}",
+              stages_.vibration ? " and made again, one at a time, for the vibration's reductions" : "");
 }
 
 PartFactors::~PartFactors() = default;
-
-void PartFactors::require_stages_fit() const {
-  require(!stages_.vibration || factors_fit_together(),
-          "{}: the vibration needs the parts' factorizations together ({:.3g} GB predicted), more than the "
-          "{:.3g} GB allowed (solver.max_factor_gb): coarsen the mesh, raise the limit, or set "
-          "vibration.enabled = false",
-          label_, report_.predicted_factor_bytes * 1e-9, report_.limit_bytes * 1e-9);
-}
 
 bool PartFactors::factors_fit_together() const { return report_.predicted_factor_bytes <= report_.limit_bytes; }
 
@@ -51,7 +44,8 @@ std::vector<fem::LinearStaticAnalysis*> PartFactors::lend_all() {
 bool PartFactors::needed_after(std::size_t /*k*/, FactorUser user, bool still_needed) const {
   switch (user) {
     case FactorUser::Stress: return stages_.assembly || stages_.vibration;
-    case FactorUser::AssemblySetUp: return still_needed || stages_.vibration;
+    // One at a time, the vibration makes the factor again when it needs it.
+    case FactorUser::AssemblySetUp: return still_needed || (stages_.vibration && factors_fit_together());
     case FactorUser::Assembly: return stages_.vibration;
     case FactorUser::Vibration: return false;
   }
@@ -82,5 +76,24 @@ void PartFactors::done_all(FactorUser user) {
 std::size_t PartFactors::size() const { return supported_.size(); }
 
 const PartFactorizationReport& PartFactors::report() const { return report_; }
+
+vibration::PartFactorLender& PartFactors::vibration_lender() { return vibration_lender_; }
+
+std::size_t PartFactors::VibrationLender::index(const std::string& body) const {
+  for (std::size_t k = 0; k < factors_.parts_.size(); ++k)
+    if (factors_.parts_[k].body() == body) return k;
+  fail("{}: no part of body '{}' to lend the vibration", factors_.label_, body);
+}
+
+fem::LinearStaticAnalysis& PartFactors::VibrationLender::lend(const std::string& body) {
+  return factors_.lend_analysis(index(body));
+}
+
+void PartFactors::VibrationLender::give_back(const std::string& body) {
+  const std::size_t k = index(body);
+  if (factors_.factors_fit_together() || !factors_.supported_[k]) return;
+  factors_.supported_[k]->analysis().release_factor();
+  factors_.log_.detail("vibration: part '{}': reductions' solves done for now, its factor freed", body);
+}
 
 }  // namespace kinetofem::pipeline

@@ -407,7 +407,7 @@ VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
                                                const std::optional<mech::Frame>& static_pose,
                                                post::ResultsWriter& writer, const AssemblyOptions& assembly_options,
                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
-                                               const Log& log) {
+                                               const Log& log, vibration::PartFactorLender* lender) {
   check_vibration_inputs(motion, assembly_options, options, quasi_static);
   const Index T = Index(motion.size());
   const int m = options.modes.modes;
@@ -418,13 +418,13 @@ VibrationSummary analyse_vibration_over_motion(const ElasticAssembly& assembly,
   summary.stop_time_s = motion.back().t;
 
   // 1. The reduced assembly: one reduction per part, with the part's own
-  // factorization.
+  // factorization (lent part by part when there is a lender).
   Stopwatch clock;
   // The automatic part-mode rule bounds the frequencies wanted in every pose
   // (Rayleigh-Ritz holds pose by pose): estimate over all of them (0.3 ms each).
   std::vector<mech::Frame> estimate_poses = motion;
   if (static_pose) estimate_poses.push_back(*static_pose);
-  const AssemblyModes modes(assembly, parts, model, options.modes, estimate_poses, log);
+  const AssemblyModes modes(assembly, parts, model, options.modes, estimate_poses, log, lender);
   summary.reductions = modes.reductions();
   summary.cutoff_hz = modes.cutoff_hz();
   summary.reduced_size = modes.size();

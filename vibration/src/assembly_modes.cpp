@@ -95,14 +95,18 @@ struct AssemblyModes::Impl {
   double length_scale = 1.0, cutoff = 0.0, fmax_estimate = 0.0;
 
   Impl(const ElasticAssembly& a, const std::vector<structure::Part>& given, const mech::MultibodyModel& model,
-       const AssemblyModesOptions& o, const std::vector<mech::Frame>& poses, const Log& l);
+       const AssemblyModesOptions& o, const std::vector<mech::Frame>& poses, const Log& l, PartFactorLender* f);
 
+  PartFactorLender* lender = nullptr;  // null: the assembly's factors, alive throughout
   // Per part, in `parts` order: K, M, Psi and X_0 made once (with the part's
   // factorization) for both the rule's bound and the final reduction.
   std::vector<vibration::CraigBamptonReducer> reducers;
 
-  void make_reducers();
-  void reduce_parts(const vibration::CraigBamptonOptions& cbo);
+  fem::LinearStaticAnalysis& borrow(size_t p);
+  void give_back(size_t p);
+  vibration::CraigBamptonReducer make_reducer(size_t p);
+  vibration::CraigBamptonOptions part_options(size_t p, const vibration::CraigBamptonOptions& given) const;
+  void take(size_t p, vibration::CraigBamptonModel cb);
   void build_matrices();
 
   MatrixXd interface_map(const mech::Frame& frame) const {  // U: 6M x n
@@ -171,8 +175,8 @@ struct AssemblyModes::Impl {
 
 AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure::Part>& given,
                           const mech::MultibodyModel& model, const AssemblyModesOptions& o,
-                          const std::vector<mech::Frame>& poses, const Log& l)
-    : assembly(a), options(o), log(l), infos(a.interfaces()) {
+                          const std::vector<mech::Frame>& poses, const Log& l, PartFactorLender* f)
+    : assembly(a), options(o), log(l), infos(a.interfaces()), lender(f) {
   require(options.modes >= 1, "vibration: modes = {}: at least one natural frequency must be wanted", options.modes);
   require(options.part_mode_cutoff_hz >= 0 && std::isfinite(options.part_mode_cutoff_hz),
           "vibration: part_mode_cutoff_hz = {} must be positive (or 0: automatic)", options.part_mode_cutoff_hz);
@@ -274,15 +278,26 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
   }
 
   // The part-mode rule.
-  make_reducers();
   vibration::CraigBamptonOptions cbo;
   if (options.part_mode_cutoff_hz > 0) {
     cbo.highest_frequency_of_interest_hz = options.part_mode_cutoff_hz;
     cbo.cutoff_factor = 1.0;
-    reduce_parts(cbo);
+    for (size_t p = 0; p < parts.size(); ++p) {
+      vibration::CraigBamptonReducer reducer = make_reducer(p);
+      take(p, reducer.reduce(part_options(p, cbo), &log));
+      give_back(p);
+    }
   } else {
-    cbo.fixed_interface_modes = false;
-    reduce_parts(cbo);
+    // The parts in order, then back: the last part's factor serves both
+    // passes without being lent twice.
+    reducers.clear();
+    for (size_t p = 0; p < parts.size(); ++p) {
+      reducers.push_back(make_reducer(p));
+      if (p + 1 < parts.size()) give_back(p);
+    }
+    cbo.fixed_interface_modes = false;  // no solve
+    for (size_t p = 0; p < parts.size(); ++p) take(p, reducers[p].reduce(part_options(p, cbo), &log));
+    build_matrices();
     for (const mech::Frame& frame : poses)
       fmax_estimate = std::max(fmax_estimate, solve(frame, options.modes).frequency_hz(options.modes - 1));
     require(fmax_estimate > 0, "vibration: the static reduction gives no positive frequency (a mechanism?)");
@@ -292,50 +307,64 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     cbo = {};
     cbo.highest_frequency_of_interest_hz = fmax_estimate;
     cbo.cutoff_factor = options.cutoff_factor;
-    reduce_parts(cbo);
-  }
-  cutoff = cbo.cutoff_factor * cbo.highest_frequency_of_interest_hz;
-  reducers.clear();  // K, M, Z_G and X_0 of every part: only the reduced models stay
-}
-
-void AssemblyModes::Impl::make_reducers() {
-  reducers.clear();
-  for (PartRed& pr : parts) {
-    std::vector<vibration::PartInterface> interfaces;
-    for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
-    fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(pr.body);
-    analysis.factorize();  // a no-op: the factor is lent while the reductions need it (pipeline::PartFactors)
-    // A part of the ground is reduced held: modes over the free equations.
-    reducers.emplace_back(analysis, interfaces, pr.label, pr.held);
-  }
-}
-
-void AssemblyModes::Impl::reduce_parts(const vibration::CraigBamptonOptions& given_options) {
-  reports.clear();
-  for (size_t p = 0; p < parts.size(); ++p) {
-    PartRed& pr = parts[p];
-    vibration::CraigBamptonOptions cbo = given_options;
-    cbo.eigen.label = pr.label;
-    cbo.solver = options.fixed_interface_solver;
-    pr.cb = reducers[p].reduce(cbo, &log);
-    if (pr.held) {
-      // Held: modes over the free equations, taken to the mesh's 3N DoFs
-      // (zero on the foundation) like a free part's.
-      const fem::DofMap& dofs = assembly.supported_analysis(pr.body).dofs();
-      pr.cb.constraint_modes = vibration::expand_to_mesh_dofs(pr.cb.constraint_modes, dofs);
-      pr.cb.normal_modes = vibration::expand_to_mesh_dofs(pr.cb.normal_modes, dofs);
-      pr.cb.residual_vectors = vibration::expand_to_mesh_dofs(pr.cb.residual_vectors, dofs);
+    for (size_t p = parts.size(); p-- > 0;) {
+      if (p + 1 < parts.size()) borrow(p);
+      take(p, reducers[p].reduce(part_options(p, cbo), &log));
+      give_back(p);
+      reducers.pop_back();  // its K, M, Z_G and X_0: only the reduced model stays
     }
-    require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
-            "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,
-            pr.cb.constraint_modes.rows(), 3 * pr.mesh->node_count());
-    MatrixXd T(pr.cb.constraint_modes.rows(), pr.cb.stiffness.rows());
-    T << pr.cb.constraint_modes, pr.cb.normal_modes, pr.cb.residual_vectors;
-    pr.basis_t_patterns = T.transpose() * pr.loads->pattern_forces();
-    reports.push_back({pr.body, pr.cb.free_dofs, pr.cb.boundary_count, pr.cb.mode_count, pr.cb.residual_count,
-                       pr.cb.cutoff_hz, pr.cb.first_dropped_hz, pr.cb.seconds});
   }
   build_matrices();
+  cutoff = cbo.cutoff_factor * cbo.highest_frequency_of_interest_hz;
+}
+
+fem::LinearStaticAnalysis& AssemblyModes::Impl::borrow(size_t p) {
+  if (lender) return lender->lend(parts[p].body);
+  fem::LinearStaticAnalysis& analysis = assembly.supported_analysis(parts[p].body);
+  analysis.factorize();  // a no-op: the assembly's factor is alive
+  return analysis;
+}
+
+void AssemblyModes::Impl::give_back(size_t p) {
+  if (lender) lender->give_back(parts[p].body);
+}
+
+vibration::CraigBamptonReducer AssemblyModes::Impl::make_reducer(size_t p) {
+  const PartRed& pr = parts[p];
+  std::vector<vibration::PartInterface> interfaces;
+  for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
+  // A part of the ground is reduced held: modes over the free equations.
+  return vibration::CraigBamptonReducer(borrow(p), interfaces, pr.label, pr.held);
+}
+
+vibration::CraigBamptonOptions AssemblyModes::Impl::part_options(size_t p,
+                                                                 const vibration::CraigBamptonOptions& given) const {
+  vibration::CraigBamptonOptions cbo = given;
+  cbo.eigen.label = parts[p].label;
+  cbo.solver = options.fixed_interface_solver;
+  return cbo;
+}
+
+void AssemblyModes::Impl::take(size_t p, vibration::CraigBamptonModel cb) {
+  PartRed& pr = parts[p];
+  pr.cb = std::move(cb);
+  if (pr.held) {
+    // Held: modes over the free equations, taken to the mesh's 3N DoFs
+    // (zero on the foundation) like a free part's.
+    const fem::DofMap& dofs = assembly.supported_analysis(pr.body).dofs();
+    pr.cb.constraint_modes = vibration::expand_to_mesh_dofs(pr.cb.constraint_modes, dofs);
+    pr.cb.normal_modes = vibration::expand_to_mesh_dofs(pr.cb.normal_modes, dofs);
+    pr.cb.residual_vectors = vibration::expand_to_mesh_dofs(pr.cb.residual_vectors, dofs);
+  }
+  require(pr.cb.constraint_modes.rows() == 3 * pr.mesh->node_count(),
+          "vibration: {}: the reduction is over {} equations, the mesh has {} DoFs", pr.label,
+          pr.cb.constraint_modes.rows(), 3 * pr.mesh->node_count());
+  MatrixXd T(pr.cb.constraint_modes.rows(), pr.cb.stiffness.rows());
+  T << pr.cb.constraint_modes, pr.cb.normal_modes, pr.cb.residual_vectors;
+  pr.basis_t_patterns = T.transpose() * pr.loads->pattern_forces();
+  reports.resize(parts.size());
+  reports[p] = {pr.body, pr.cb.free_dofs, pr.cb.boundary_count, pr.cb.mode_count, pr.cb.residual_count,
+                pr.cb.cutoff_hz, pr.cb.first_dropped_hz, pr.cb.seconds};
 }
 
 void AssemblyModes::Impl::build_matrices() {
@@ -394,8 +423,8 @@ void AssemblyModes::Impl::build_matrices() {
 
 AssemblyModes::AssemblyModes(const ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                              const mech::MultibodyModel& model, const AssemblyModesOptions& options,
-                             const std::vector<mech::Frame>& poses, const Log& log)
-    : impl_(std::make_unique<Impl>(assembly, parts, model, options, poses, log)) {}
+                             const std::vector<mech::Frame>& poses, const Log& log, PartFactorLender* lender)
+    : impl_(std::make_unique<Impl>(assembly, parts, model, options, poses, log, lender)) {}
 AssemblyModes::~AssemblyModes() = default;
 AssemblyModes::AssemblyModes(AssemblyModes&&) noexcept = default;
 AssemblyModes& AssemblyModes::operator=(AssemblyModes&&) noexcept = default;

@@ -25,7 +25,6 @@ TEST(PartFactors, StressOnlyFreesEachPartAfterItsStress) {
   const std::vector<Part> parts = test::three_beams();
   PartFactors factors(parts, fem::StaticSolverOptions{}, FactorStages{}, "case.toml", test::quiet_log());
   EXPECT_TRUE(factors.factors_fit_together());
-  EXPECT_NO_THROW(factors.require_stages_fit());
   EXPECT_TRUE(factors.lend_analysis(0).is_factorized());
   factors.done(0, FactorUser::Stress);
   EXPECT_EQ(factors.held(0), nullptr);
@@ -80,17 +79,30 @@ TEST(PartFactors, FactorsNotFittingTogetherGoOneAtATimeAndForceSuperposition) {
   EXPECT_TRUE(fitting.superpose_assembly_loads(kMinSuperposedPoses));
 }
 
-TEST(PartFactors, TheVibrationWithFactorsNotFittingTogetherIsAnError) {
+TEST(PartFactors, TheVibrationWithFactorsNotFittingTogetherBorrowsThemOneAtATime) {
   const std::vector<Part> parts = test::three_beams();
   PartFactors factors(parts, tight_for(parts), FactorStages{.assembly = true, .vibration = true}, "case.toml",
                       test::quiet_log());
-  try {
-    factors.require_stages_fit();
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("case.toml: the vibration needs the parts' factorizations together (", 0), 0u)
-        << e.what();
+  EXPECT_FALSE(factors.factors_fit_together());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    factors.lend(k);
+    factors.done(k, FactorUser::Stress);
+    factors.lend(k);
+    factors.done(k, FactorUser::AssemblySetUp);
+    ASSERT_NE(factors.held(k), nullptr) << "kept for the vibration";
+    EXPECT_FALSE(factors.held(k)->is_factorized()) << "freed after the assembly's set-up";
   }
+  vibration::PartFactorLender& lender = factors.vibration_lender();
+  EXPECT_TRUE(lender.lend(parts[1].body()).is_factorized()) << "made again for the vibration";
+  lender.give_back(parts[1].body());
+  EXPECT_FALSE(factors.held(1)->is_factorized()) << "freed between the reductions' uses";
+  EXPECT_THROW(lender.lend("no such body"), Error);
+
+  PartFactors fitting(parts, fem::StaticSolverOptions{}, FactorStages{.assembly = true, .vibration = true},
+                      "case.toml", test::quiet_log());
+  fitting.done(0, FactorUser::AssemblySetUp);
+  fitting.vibration_lender().give_back(parts[0].body());
+  EXPECT_TRUE(fitting.held(0)->is_factorized()) << "factors that fit together stay";
 }
 
 }  // namespace

@@ -71,8 +71,9 @@ AssemblySummary analyse_assembly_with_factors(structure::ElasticAssembly& assemb
                                               const Log& log, PartFactors& factors,
                                               std::vector<PartStressHistory>* stress_histories = nullptr);
 
-// analyse_vibration_over_motion on the same assembly, whose parts' factors
-// `factors` still holds, then every factor given back (FactorUser::Vibration).
+// analyse_vibration_over_motion on the same assembly, `factors` lending each
+// part's factor to its reductions part by part (PartFactors::
+// vibration_lender), then every factor given back (FactorUser::Vibration).
 VibrationSummary analyse_vibration_with_factors(const structure::ElasticAssembly& assembly,
                                                 const std::vector<Part>& parts, const mech::MultibodyModel& model,
                                                 const std::vector<mech::Frame>& motion,

@@ -8,14 +8,13 @@
 // The factor's life as a call order (like Eigen's CholmodSupport:
 // analyzePattern, factorize, solve):
 //   PartFactors factors(parts, solver, stages, label, log);  // analyse; side by side when they fit
-//   factors.require_stages_fit();       // the vibration needs them together
 //   for each part k:
 //     analyse_part_over_motion(..., &factors.lend(k));       // factorized here when one at a time
 //     factors.done(k, FactorUser::Stress);                   // freed unless a later stage needs it
 //     assembly.set_up_part(body, factors.lend_analysis(k));
 //     factors.done(k, FactorUser::AssemblySetUp, assembly.solves_with_factor(body));
 //   analyse_assembly_over_motion(...); factors.done_all(FactorUser::Assembly);
-//   analyse_vibration_over_motion(...); factors.done_all(FactorUser::Vibration);
+//   analyse_vibration_over_motion(..., &factors.vibration_lender()); factors.done_all(FactorUser::Vibration);
 // (the stages that do this for the driver: factor_sharing_stages.hpp)
 //
 // Side by side or one at a time (factorize_parts, part_factorization.hpp):
@@ -25,9 +24,13 @@
 // otherwise one factor at a time: each is made right before its part's
 // stress stage and freed after its last use in that part's turn, and the
 // elastic assembly then superposes its loads (no pose may need a freed
-// factor). The vibration needs every factor after the assembly: with
-// factors that do not fit together it is an Error (require_stages_fit).
-// Stages borrow; they never free a factor.
+// factor). The vibration's reductions borrow each part's factor twice (the
+// part-mode rule's set-up, then the fixed-interface modes;
+// vibration::AssemblyModes): with factors that fit together they stay from
+// the stress stage to the vibration; otherwise each is freed after the
+// assembly's set-up and made again for the vibration, one at a time
+// (vibration_lender; the last part's once). Stages borrow; they never free
+// a factor.
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -38,6 +41,7 @@
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/solver/static_analysis.hpp"
+#include "kinetofem/vibration/assembly_modes.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -73,10 +77,6 @@ class PartFactors {
   PartFactors& operator=(const PartFactors&) = delete;
   ~PartFactors();
 
-  // Error ("<label>: the vibration needs the parts' factorizations together
-  // ...") when the vibration is asked for and the factors do not fit the
-  // limit together.
-  void require_stages_fit() const;
   // predicted <= limit: every factor may stay in memory until its last user.
   bool factors_fit_together() const;
   // Whether the elastic assembly superposes its loads over `poses` poses:
@@ -97,6 +97,10 @@ class PartFactors {
   // is freed when no later stage needs it.
   void done(std::size_t k, FactorUser user, bool still_needed = false);
   void done_all(FactorUser user);
+  // Lends the parts' factors to the vibration's reductions by body name;
+  // each given back is freed when the factors do not fit together (made
+  // again when lent again), kept otherwise.
+  vibration::PartFactorLender& vibration_lender();
 
   std::size_t size() const;
   const PartFactorizationReport& report() const;  // the run.factorization report
@@ -110,6 +114,18 @@ class PartFactors {
   const Log& log_;
   PartFactorizationReport report_;
   std::vector<std::unique_ptr<SupportedPart>> supported_;
+
+  class VibrationLender final : public vibration::PartFactorLender {
+   public:
+    explicit VibrationLender(PartFactors& factors) : factors_(factors) {}
+    fem::LinearStaticAnalysis& lend(const std::string& body) override;
+    void give_back(const std::string& body) override;
+
+   private:
+    std::size_t index(const std::string& body) const;
+    PartFactors& factors_;
+  };
+  VibrationLender vibration_lender_{*this};
 };
 
 }  // namespace kinetofem::pipeline

@@ -124,9 +124,11 @@ VibrationSummary analyse_vibration_over_motion(const std::vector<structure::Part
                                                const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
 
 // The same on the caller's (set-up) assembly, e.g. the one the quasi-static
-// stage ran (driver): its parts' interface columns are not solved again. Its
-// parts' factorizations must still be lent to it (PartFactors keeps them
-// until the vibration is done).
+// stage ran (driver): its parts' interface columns are not solved again.
+// `lender`: lends each part's factorization to the reductions, part by part
+// (PartFactors::vibration_lender: one factor in memory at a time when they do
+// not fit together); null: the assembly's parts' factorizations must still
+// be lent to it.
 VibrationSummary analyse_vibration_over_motion(const structure::ElasticAssembly& assembly,
                                                const std::vector<structure::Part>& parts,
                                                const mech::MultibodyModel& model,
@@ -134,7 +136,7 @@ VibrationSummary analyse_vibration_over_motion(const structure::ElasticAssembly&
                                                const std::optional<mech::Frame>& static_pose,
                                                post::ResultsWriter& writer, const structure::AssemblyOptions& assembly_options,
                                                const VibrationOptions& options, const AssemblySummary& quasi_static,
-                                               const Log& log);
+                                               const Log& log, vibration::PartFactorLender* lender = nullptr);
 
 // The frequencies, amplification and settling in a few lines (Hz, mm, s).
 std::string format_vibration_summary(const VibrationSummary& summary);

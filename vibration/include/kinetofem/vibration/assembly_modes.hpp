@@ -41,6 +41,13 @@
 // modes and the static response X_0 are made once and serve both the static
 // reduction (the bound: no solve) and the final one (the fixed-interface
 // modes' block solves only).
+// Part by part: each part's factor is borrowed (PartFactorLender) for its
+// set-up (Z_G, X_0), given back, and borrowed again for its fixed-interface
+// modes after the bound, parts in order and then back, so the last part's
+// factor serves both without a second lend; with a lender that frees it in
+// between only one factor is in memory at a time (the others are made again
+// for their second use), with the reducers' n x 4 n_b columns and K, M of
+// every part.
 //
 // SI units: Hz, rad/s; x in m, rad, sqrt(kg) m.
 #include <memory>
@@ -86,6 +93,17 @@ struct PoseModes {
   Eigen::Index constrained_size = 0;  // dimension of the null space of C U
 };
 
+// Lends each part's factorized 3-2-1-supported analysis (the elastic
+// assembly's, ElasticAssembly::supported_analysis) to the reductions and
+// takes it back between their uses (pipeline::PartFactors: it frees the
+// factor in between when the parts' factors do not fit in memory together).
+class PartFactorLender {
+ public:
+  virtual ~PartFactorLender() = default;
+  virtual fem::LinearStaticAnalysis& lend(const std::string& body) = 0;  // factorized
+  virtual void give_back(const std::string& body) = 0;                   // not solved with until lent again
+};
+
 class AssemblyModes {
  public:
   // Reduces every part of `assembly` once (its shared factorizations); the
@@ -94,9 +112,11 @@ class AssemblyModes {
   // gives every output time and the static pose). Throws Error for bad
   // options, rigid-bore couplings, a part of zero density, an eigen solve
   // that does not converge (vibration::EigenNotConverged names the part).
+  // `lender` (may be null: the assembly's factors are alive throughout) lends
+  // each part's factor for its reductions, part by part (header).
   AssemblyModes(const ElasticAssembly& assembly, const std::vector<structure::Part>& parts,
                 const mech::MultibodyModel& model, const AssemblyModesOptions& options,
-                const std::vector<mech::Frame>& poses, const Log& log);
+                const std::vector<mech::Frame>& poses, const Log& log, PartFactorLender* lender = nullptr);
   ~AssemblyModes();
   AssemblyModes(AssemblyModes&&) noexcept;
   AssemblyModes& operator=(AssemblyModes&&) noexcept;
