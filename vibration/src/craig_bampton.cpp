@@ -505,6 +505,10 @@ fem::EigenSolution CraigBamptonReducer::Impl::block_lanczos(double cutoff_hz,
         break;
       }
     }
+    require(need <= theta.size() || V.x.cols() < interior,
+            "Craig-Bampton reduction of '{}': all {} fixed-interface modes lie below the cutoff {:.4g} Hz: lower "
+            "the cutoff or refine the part",
+            label, theta.size(), cutoff_hz);
     if (step >= kMaxBlockSteps || V.x.cols() >= interior) {
       out.statistics.converged = converged;
       out.statistics.operator_applications = solver->solves() - solves_before;

@@ -7,7 +7,7 @@
 // rest differs only by the eigen solver's convergence.
 // Models: the SPEC §1 lever-chain manipulator with box parts and the two-link
 // arm with its payload (structure_fixtures.hpp), at poses over their motion.
-// Reference and tolerances (the requirement for the new reduction):
+// Reference and tolerances (what the new reduction must keep):
 //   * frequencies of the assembly in every pose: 1e-6 relative;
 //   * mode shapes (the parts' nodal fields, sign aligned, relative to their
 //     largest entry): 1e-6;

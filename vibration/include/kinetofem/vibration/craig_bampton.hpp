@@ -135,7 +135,7 @@ enum class FixedInterfaceSolver {
 struct CraigBamptonOptions {
   double highest_frequency_of_interest_hz = 0.0;  // f_max, Hz, > 0
   double cutoff_factor = 2.0;                     // cutoff = factor x f_max, >= 1
-  int first_batch = 12;                           // modes of the first Lanczos request
+  int first_batch = 12;                           // modes of the first request (Lanczos only)
   int max_modes = 400;                            // more needed below the cutoff: Error
   // Add the residual vectors X (header): n_b more coordinates, frequency
   // error O((f / f_cutoff)^4) instead of O((f / f_cutoff)^2).
