@@ -42,6 +42,7 @@ using units::kMm;
 const std::vector<KeySpec>& spherical_manipulator_schema() {
   static const std::vector<KeySpec> schema = [] {
     const mech::SphericalSizingOptions sizing;
+    const meshes::SphericalPartRules rules;
     std::vector<KeySpec> s = mechanism_case_keys("spherical_manipulator");
     s.insert(s.end(), {
       {.path = "manipulator.variant", .type = Type::String, .default_text = "A", .allowed = {"A", "B", "C", "D", "E"}, .doc = "row of the SPEC §5 data table"},
@@ -58,10 +59,14 @@ const std::vector<KeySpec>& spherical_manipulator_schema() {
       {.path = "motion.intervals", .type = Type::Integer, .default_number = 100, .min = 2, .max = 1000000, .doc = "output intervals over the motion (the law's breakpoints are added)"},
       {.path = "check.forward_dynamics", .type = Type::Boolean, .default_number = 1, .doc = "integrate the efforts forward with CVODES and compare M's path with the plan"},
       {.path = "parts.enabled", .type = Type::Boolean, .default_number = 0, .doc = "mesh the column, sleeve and arm (SPEC §5 sizing, docs/spherical_manipulator_parts.md) and compute their stress over the motion from the spatial multibody loads"},
+      {.path = "parts.arm_diameter_ratio", .type = Type::Number, .default_number = rules.arm_diameter_ratio, .min = 0.3, .max = 0.85, .doc = "the arm's outer diameter D3 over the sleeve's d2 (a design choice the SPEC leaves open)"},
+      {.path = "parts.guide_length_ratio", .type = Type::Number, .default_number = rules.guide_length_ratio, .min = 0.25, .max = 2.0, .doc = "each guide land's length l_g over the arm's diameter D3"},
+      {.path = "parts.pin_diameter_ratio", .type = Type::Number, .default_number = rules.pin_diameter_ratio, .min = 0.1, .max = 0.5, .doc = "the tilt pin's (and trunnion journals') diameter over the sleeve's d2"},
     });
     const std::vector<KeySpec> material = material_keys(), mesh = part_mesh_keys(), stress = motion_solver_keys(),
-                               solver = solver_keys();
+                               solver = solver_keys(), sweep = sweep_keys();
     s.insert(s.end(), material.begin(), material.end());
+    s.insert(s.end(), sweep.begin(), sweep.end());
     s.insert(s.end(), solver.begin(), solver.end());
     s.insert(s.end(), mesh.begin(), mesh.end());
     s.insert(s.end(), stress.begin(), stress.end());
@@ -169,7 +174,11 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
   };
   if (with_parts) {
     try {
-      parts = pipeline::spherical_manipulator_parts(design, read_part_mesh_options(c, options.output_dir),
+      meshes::SphericalPartRules rules;
+      rules.arm_diameter_ratio = c.number("parts.arm_diameter_ratio");
+      rules.guide_length_ratio = c.number("parts.guide_length_ratio");
+      rules.pin_diameter_ratio = c.number("parts.pin_diameter_ratio");
+      parts = pipeline::spherical_manipulator_parts(design, rules, read_part_mesh_options(c, options.output_dir),
                                                     read_material(c), log);
       std::vector<pipeline::Part> as_parts;
       for (const pipeline::SpatialPart& p : parts->parts) as_parts.push_back(as_part(p));

@@ -124,14 +124,14 @@ void check_service_zone(const SphericalDesign& design, const Vector3d& q, double
   const SphericalVariant& v = design.variant;
   const double tol = 1e-9;
   require(std::abs(q(0)) <= v.base_rotation_max_rad + tol,
-          "spherical manipulator {}: base rotation phi10 = {:.3f} deg exceeds +-{:.1f} deg at t = {} s", v.name,
+          "spherical manipulator {}: base rotation phi10 = {:.3f} deg exceeds +-{:.1f} deg at t = {:.6g} s", v.name,
           q(0) / kDeg, v.base_rotation_max_rad / kDeg, t);
   require(std::abs(q(1)) <= v.tilt_max_rad + tol,
-          "spherical manipulator {}: arm tilt phi21 = {:.3f} deg exceeds +-{:.1f} deg at t = {} s", v.name,
+          "spherical manipulator {}: arm tilt phi21 = {:.3f} deg exceeds +-{:.1f} deg at t = {:.6g} s", v.name,
           q(1) / kDeg, v.tilt_max_rad / kDeg, t);
   const double reach = q(2) * std::cos(q(1));  // horizontal radius of M
   require(q(2) <= v.r_max_m + tol && reach >= v.r_min_m - tol,
-          "spherical manipulator {}: M outside the service zone at t = {} s (l_BM = {:.4f} m, radius {:.4f} m, zone "
+          "spherical manipulator {}: M outside the service zone at t = {:.6g} s (l_BM = {:.4f} m, radius {:.4f} m, zone "
           "{}..{} m)",
           v.name, t, q(2), reach, v.r_min_m, v.r_max_m);
 }

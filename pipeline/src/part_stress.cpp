@@ -346,7 +346,7 @@ PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech
   ps.iterative_solver = env.iterative_solver;
   ps.solver_summary = env.solver_summary;
   if (history) {
-    history->source = StressHistorySource::FreeBodyPart;
+    history->source = StressHistorySource::SpatialFreeBodyPart;
     history->pattern_stress_pa = env.patterns->stress_pa;
     history->coefficients = env.patterns->coefficients;
   }

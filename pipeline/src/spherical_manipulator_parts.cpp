@@ -13,10 +13,9 @@ namespace kinetofem::pipeline {
 namespace names = mech::spatial::spherical_names;
 
 SphericalManipulatorParts spherical_manipulator_parts(const mech::SphericalDesign& design,
-                                                      const meshes::MeshOptions& mesh,
+                                                      meshes::SphericalPartRules rules, const meshes::MeshOptions& mesh,
                                                       const fem::IsotropicMaterial& material, const Log& log) {
   SphericalManipulatorParts out;
-  meshes::SphericalPartRules rules;
   rules.density_kg_m3 = material.density_kg_m3;
   out.dimensions = meshes::spherical_part_dimensions(spherical_part_sizing(design), rules);
   const meshes::SphericalPartDimensions& d = out.dimensions;

@@ -36,7 +36,7 @@ const SphericalRun& spherical_run() {
     meshes::MeshOptions mesh;
     mesh.element_size_m = 0.04;
     mesh.order = 2;
-    r.parts = spherical_manipulator_parts(r.design, mesh, {}, Log::quiet());
+    r.parts = spherical_manipulator_parts(r.design, {}, mesh, {}, Log::quiet());
     r.model = mech::spatial::spherical_manipulator_model(r.design, line);
     apply_spatial_mass_properties(r.model, r.parts.parts);
     // Ten intervals of the motion, then M held at its end at rest (the

@@ -19,15 +19,18 @@
 namespace kinetofem::pipeline {
 
 // Where a part's stress history comes from: the per-part stage (the part as
-// a free body under the planar multibody reactions, part_stress.hpp) or the
-// elastic assembly (its 3D joint loads, the moments between parts in
-// several planes included; assembly_over_motion.hpp).
-enum class StressHistorySource { FreeBodyPart, ElasticAssembly };
+// a free body under the planar multibody reactions, or under the spatial
+// ones for a part of a spatial mechanism, part_stress.hpp) or the elastic
+// assembly (its 3D joint loads, the moments between parts in several planes
+// included; assembly_over_motion.hpp).
+enum class StressHistorySource { FreeBodyPart, SpatialFreeBodyPart, ElasticAssembly };
 
 // "the part as a free body (planar reactions)", "the elastic assembly (3D joint loads)".
 inline const char* describe(StressHistorySource source) {
   switch (source) {
     case StressHistorySource::FreeBodyPart: return "the part as a free body under the planar multibody reactions";
+    case StressHistorySource::SpatialFreeBodyPart:
+      return "the part as a free body under the spatial multibody reactions";
     case StressHistorySource::ElasticAssembly: return "the elastic assembly (its 3D joint loads)";
   }
   return "?";

@@ -42,10 +42,11 @@ struct SphericalManipulatorParts {
   double meshing_seconds = 0.0;
 };
 
-// Meshes the three parts of `design` and defines their loads. Throws Error
-// naming the part when its dimensions are impossible or Gmsh fails.
+// Meshes the three parts of `design` by `rules` (their density: the
+// material's) and defines their loads. Throws Error naming the part when its
+// dimensions are impossible or Gmsh fails.
 SphericalManipulatorParts spherical_manipulator_parts(const mech::SphericalDesign& design,
-                                                      const meshes::MeshOptions& mesh,
+                                                      meshes::SphericalPartRules rules, const meshes::MeshOptions& mesh,
                                                       const fem::IsotropicMaterial& material, const Log& log);
 
 // The bodies of `model` get their parts' mass properties (mass, centre of
