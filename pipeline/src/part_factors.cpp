@@ -41,11 +41,14 @@ std::vector<fem::LinearStaticAnalysis*> PartFactors::lend_all() {
   return out;
 }
 
-bool PartFactors::needed_after(std::size_t /*k*/, FactorUser user, bool still_needed) const {
+bool PartFactors::needed_after(std::size_t k, FactorUser user, bool still_needed) const {
   switch (user) {
     case FactorUser::Stress: return stages_.assembly || stages_.vibration;
-    // One at a time, the vibration makes the factor again when it needs it.
-    case FactorUser::AssemblySetUp: return still_needed || (stages_.vibration && factors_fit_together());
+    // One at a time, the vibration makes the factor again when it needs it,
+    // but starts with the last part (vibration::AssemblyModes), whose factor
+    // is the one in memory now.
+    case FactorUser::AssemblySetUp:
+      return still_needed || (stages_.vibration && (factors_fit_together() || k + 1 == parts_.size()));
     case FactorUser::Assembly: return stages_.vibration;
     case FactorUser::Vibration: return false;
   }

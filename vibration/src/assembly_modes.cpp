@@ -288,13 +288,16 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
       give_back(p);
     }
   } else {
-    // The parts in order, then back: the last part's factor serves both
-    // passes without being lent twice.
+    // The parts from the last to the first (the set-up's order backwards:
+    // one lent one at a time may still hold the last part's factor), then
+    // from the first: the first part's factor serves both passes without
+    // being lent twice.
     reducers.clear();
-    for (size_t p = 0; p < parts.size(); ++p) {
+    for (size_t p = parts.size(); p-- > 0;) {
       reducers.push_back(make_reducer(p));
-      if (p + 1 < parts.size()) give_back(p);
+      if (p > 0) give_back(p);
     }
+    std::reverse(reducers.begin(), reducers.end());  // in `parts` order
     cbo.fixed_interface_modes = false;  // no solve
     for (size_t p = 0; p < parts.size(); ++p) take(p, reducers[p].reduce(part_options(p, cbo), &log));
     build_matrices();
@@ -307,12 +310,13 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     cbo = {};
     cbo.highest_frequency_of_interest_hz = fmax_estimate;
     cbo.cutoff_factor = options.cutoff_factor;
-    for (size_t p = parts.size(); p-- > 0;) {
-      if (p + 1 < parts.size()) borrow(p);
+    for (size_t p = 0; p < parts.size(); ++p) {
+      if (p > 0) borrow(p);
       take(p, reducers[p].reduce(part_options(p, cbo), &log));
       give_back(p);
-      reducers.pop_back();  // its K, M, Z_G and X_0: only the reduced model stays
+      const vibration::CraigBamptonReducer done = std::move(reducers[p]);  // its K, M, Z_G, X_0 go
     }
+    reducers.clear();
   }
   build_matrices();
   cutoff = cbo.cutoff_factor * cbo.highest_frequency_of_interest_hz;

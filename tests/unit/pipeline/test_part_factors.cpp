@@ -90,7 +90,8 @@ TEST(PartFactors, TheVibrationWithFactorsNotFittingTogetherBorrowsThemOneAtATime
     factors.lend(k);
     factors.done(k, FactorUser::AssemblySetUp);
     ASSERT_NE(factors.held(k), nullptr) << "kept for the vibration";
-    EXPECT_FALSE(factors.held(k)->is_factorized()) << "freed after the assembly's set-up";
+    EXPECT_EQ(factors.held(k)->is_factorized(), k + 1 == parts.size())
+        << "freed after the assembly's set-up, but the last, which the vibration uses first";
   }
   vibration::PartFactorLender& lender = factors.vibration_lender();
   EXPECT_TRUE(lender.lend(parts[1].body()).is_factorized()) << "made again for the vibration";

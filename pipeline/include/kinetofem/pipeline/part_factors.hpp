@@ -28,9 +28,9 @@
 // part-mode rule's set-up, then the fixed-interface modes;
 // vibration::AssemblyModes): with factors that fit together they stay from
 // the stress stage to the vibration; otherwise each is freed after the
-// assembly's set-up and made again for the vibration, one at a time
-// (vibration_lender; the last part's once). Stages borrow; they never free
-// a factor.
+// assembly's set-up (but the last part's, which the vibration uses first)
+// and made again for the vibration, one at a time (vibration_lender).
+// Stages borrow; they never free a factor.
 #include <cstddef>
 #include <memory>
 #include <string>

@@ -43,8 +43,10 @@
 // modes' block solves only).
 // Part by part: each part's factor is borrowed (PartFactorLender) for its
 // set-up (Z_G, X_0), given back, and borrowed again for its fixed-interface
-// modes after the bound, parts in order and then back, so the last part's
-// factor serves both without a second lend; with a lender that frees it in
+// modes after the bound, parts from the last to the first and then back, so
+// the first part's factor serves both without a second lend (and a lender
+// that kept the last part's factor from the assembly's set-up need not make
+// it again); with a lender that frees it in
 // between only one factor is in memory at a time (the others are made again
 // for their second use), with the reducers' n x 4 n_b columns and K, M of
 // every part.
