@@ -303,8 +303,8 @@ BatchRow row_of(const Batch& b, std::size_t index, const Outcome& o) {
   row.error = o.error;
   if (o.status != RunStatus::Failed)
     if (const auto s = read_run_summary(run_summary_path(b.dir, row.name))) {
-      if (std::isfinite(s->max_von_mises_pa)) row.max_von_mises_pa = s->max_von_mises_pa;
-      if (std::isfinite(s->max_displacement_m)) row.max_displacement_m = s->max_displacement_m;
+      if (s->max_von_mises_pa && std::isfinite(*s->max_von_mises_pa)) row.max_von_mises_pa = s->max_von_mises_pa;
+      if (s->max_displacement_m && std::isfinite(*s->max_displacement_m)) row.max_displacement_m = s->max_displacement_m;
       for (const auto& [key, value] : s->extra)
         if (key == "fatigue_min_life_h") row.min_fatigue_life_s = value * units::kHour;
       row.results_file = s->results_file.string();

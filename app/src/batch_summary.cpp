@@ -82,9 +82,10 @@ void write_run_summary(const std::filesystem::path& output_dir, const RunSummary
   toml::table table{{"name", summary.name},
                     {"type", summary.type},
                     {"results_file", summary.results_file.string()},
-                    {"wall_time_s", summary.wall_time_s},
-                    {"max_von_mises_mpa", summary.max_von_mises_pa / kMpa},
-                    {"max_displacement_mm", summary.max_displacement_m / kMm}};
+                    {"wall_time_s", summary.wall_time_s}};
+  // Only a run with FE parts has them (a mechanism-only run has no stress, not a zero one).
+  if (summary.max_von_mises_pa) table.insert_or_assign("max_von_mises_mpa", *summary.max_von_mises_pa / kMpa);
+  if (summary.max_displacement_m) table.insert_or_assign("max_displacement_mm", *summary.max_displacement_m / kMm);
   for (const auto& [key, value] : summary.extra) table.insert_or_assign(key, value);
   std::ostringstream text;
   text << "# Key results of `kinetofem run`, written when the run finished (read by kinetofem batch).\n"
@@ -106,8 +107,8 @@ std::optional<RunSummary> read_run_summary(const std::filesystem::path& file) {
   s.type = table["type"].value_or(std::string());
   s.results_file = table["results_file"].value_or(std::string());
   s.wall_time_s = table["wall_time_s"].value_or(0.0);
-  s.max_von_mises_pa = table["max_von_mises_mpa"].value_or(std::nan("")) * kMpa;
-  s.max_displacement_m = table["max_displacement_mm"].value_or(std::nan("")) * kMm;
+  if (const auto v = table["max_von_mises_mpa"].value<double>()) s.max_von_mises_pa = *v * kMpa;
+  if (const auto v = table["max_displacement_mm"].value<double>()) s.max_displacement_m = *v * kMm;
   for (const auto& [key, node] : table) {
     const std::string k(key.str());
     if (k == "name" || k == "type" || k == "results_file" || k == "wall_time_s" ||

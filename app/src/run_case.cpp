@@ -143,8 +143,9 @@ bool summary_may_be_infinite(const std::string& key) {
 // Every summary value is finite (or a documented +inf). Else the run's results
 // files are removed: a run with a non-finite key result leaves no results.
 void require_finite_summary(const RunSummary& s) {
-  std::vector<std::pair<std::string, double>> values = {{"max_von_mises_mpa", s.max_von_mises_pa},
-                                                        {"max_displacement_mm", s.max_displacement_m}};
+  std::vector<std::pair<std::string, double>> values;
+  if (s.max_von_mises_pa) values.push_back({"max_von_mises_mpa", *s.max_von_mises_pa});
+  if (s.max_displacement_m) values.push_back({"max_displacement_mm", *s.max_displacement_m});
   values.insert(values.end(), s.extra.begin(), s.extra.end());
   for (const auto& [key, value] : values) {
     if (std::isfinite(value) || (value > 0 && summary_may_be_infinite(key))) continue;
@@ -158,7 +159,12 @@ void require_finite_summary(const RunSummary& s) {
 }
 
 // A mechanism-only case type's key results are its named values.
-RunSummary summary_of(const MechanismCaseSummary& m) { return {.results_file = m.results_file, .extra = m.values}; }
+RunSummary summary_of(const MechanismCaseSummary& m) {
+  return {.results_file = m.results_file,
+          .max_von_mises_pa = m.max_von_mises_pa,
+          .max_displacement_m = m.max_displacement_m,
+          .extra = m.values};
+}
 
 // A case type's CaseType::run: its job, then its key results (the type's name
 // is filled in by run_case).

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "kinetofem/app/common_keys.hpp"
@@ -276,10 +277,21 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
                   ps.peak_von_mises_pa / units::kMpa, ps.peak_von_mises_time_s, ps.peak_displacement_m / kMm,
                   ps.worst_equilibrium_residual);
       summary.values.push_back({"peak_von_mises_" + ps.body + "_mpa", ps.peak_von_mises_pa / units::kMpa});
+      summary.max_von_mises_pa = std::max(summary.max_von_mises_pa.value_or(0.0), ps.peak_von_mises_pa);
+      summary.max_displacement_m = std::max(summary.max_displacement_m.value_or(0.0), ps.peak_displacement_m);
     }
   }
   std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());
-  if (!part_fatigue.empty()) report_fatigue(part_fatigue, summary.results_file);
+  if (!part_fatigue.empty()) {
+    report_fatigue(part_fatigue, summary.results_file);
+    double min_life_s = std::numeric_limits<double>::infinity(), max_utilization = 0.0;
+    for (const pipeline::PartFatigue& f : part_fatigue) {
+      min_life_s = std::min(min_life_s, f.min_life_s);
+      max_utilization = std::max(max_utilization, f.max_utilization);
+    }
+    summary.values.push_back({"fatigue_min_life_h", min_life_s / units::kHour});
+    summary.values.push_back({"fatigue_max_utilization", max_utilization});
+  }
   return summary;
 }
 

@@ -39,8 +39,9 @@ struct RunSummary {
   std::string type;  // case type ("fe_static", "manipulator")
   std::filesystem::path results_file;
   double wall_time_s = 0.0;
-  double max_von_mises_pa = 0.0;
-  double max_displacement_m = 0.0;
+  // Over the FE parts; empty for a case without parts (a mechanism only).
+  std::optional<double> max_von_mises_pa;
+  std::optional<double> max_displacement_m;
   // Further key results, the unit in the key's name ("max_drive_torque_nm").
   std::vector<std::pair<std::string, double>> extra;
 };

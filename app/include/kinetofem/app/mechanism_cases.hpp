@@ -17,6 +17,7 @@
 // at a constant rate stated in the case (default 1 rad/s), so t is a real time
 // of that sweep and the parameter itself is written as a history.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,6 +32,8 @@ namespace kinetofem::app {
 struct MechanismCaseSummary {
   std::filesystem::path results_file;
   std::vector<std::pair<std::string, double>> values;
+  // Over the FE parts, for a case type that has them; empty otherwise.
+  std::optional<double> max_von_mises_pa, max_displacement_m;
   // Error naming the key if absent.
   double value(const std::string& name) const;
 };
