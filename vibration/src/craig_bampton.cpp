@@ -245,7 +245,7 @@ constexpr Index kRandomStartColumns = 4;
 constexpr Index kExtraRitzVectors = 2;
 // The basis restarts from its lowest Ritz vectors beyond this many columns.
 constexpr Index kBasisBeforeRestart = 60;
-// Block steps before the block Lanczos gives up (each one solve of a block).
+// Block steps before the block Davidson gives up (each one solve of a block).
 constexpr int kMaxBlockSteps = 200;
 
 // A block of fields with its mass products, tracked through every linear

@@ -34,7 +34,7 @@
 // mode up to part_mode_cutoff_hz, plus its residual vectors. Automatic cutoff
 // (0, the default): cutoff_factor x f_max, f_max = the highest assembly
 // frequency wanted, estimated from the parts' static reduction (constraint
-// modes and residual vectors only, no Lanczos) over the poses given; by
+// modes and residual vectors only, no fixed-interface modes) over the poses given; by
 // Rayleigh-Ritz the final frequencies lie below that estimate, so the rule
 // holds for them (checked and printed by check_rule()).
 // One pass per part (vibration::CraigBamptonReducer): K, M, the constraint
@@ -48,7 +48,7 @@
 // that kept the last part's factor from the assembly's set-up need not make
 // it again); with a lender that frees it in
 // between only one factor is in memory at a time (the others are made again
-// for their second use), with the reducers' n x 4 n_b columns and K, M of
+// for their second use), with the reducers' n x 5 n_b columns and K, M of
 // every part.
 //
 // SI units: Hz, rad/s; x in m, rad, sqrt(kg) m.

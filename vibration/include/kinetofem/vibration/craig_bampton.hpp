@@ -140,7 +140,7 @@ struct CraigBamptonOptions {
   // Add the residual vectors X (header): n_b more coordinates, frequency
   // error O((f / f_cutoff)^4) instead of O((f / f_cutoff)^2).
   bool residual_vectors = true;
-  // false: no fixed-interface modes at all (no Lanczos): the static
+  // false: no fixed-interface modes at all (no solve): the static
   // reduction Psi plus the residual vectors, whose frequencies bound the
   // full model's from above (an estimate for choosing the cutoff);
   // highest_frequency_of_interest_hz is then not used.
@@ -175,7 +175,7 @@ struct CraigBamptonModel {
   double factor_nonzeros = 0.0;
   long long lanczos_solves = 0;               // right-hand sides solved with K_s for this model
   double seconds = 0.0;
-  // K and M assembly, constraint modes, fixed-interface modes (Lanczos),
+  // K and M assembly, constraint modes, fixed-interface modes,
   // residual vectors, projection (and checks), s. The set-up's phases (K and
   // M, constraint modes, the static response X_0) and solves count in the
   // first model a CraigBamptonReducer makes only.
@@ -188,7 +188,7 @@ struct CraigBamptonModel {
 // or the final one (the fixed-interface modes' solves only), as often as
 // asked. The factorization (its own, or the analysis lent) is used by the
 // constructor and by reduce() with fixed-interface modes; a lent analysis
-// must outlive those calls. Memory: K, M, G, Z_G, Psi and X_0 (n x 3 n_b)
+// must outlive those calls. Memory: K, M and G, Z_G, Psi, M Psi, X_0 (n x 5 n_b)
 // until the reducer goes.
 class CraigBamptonReducer {
  public:
