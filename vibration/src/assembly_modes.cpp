@@ -284,22 +284,24 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     cbo.cutoff_factor = 1.0;
     for (size_t p = 0; p < parts.size(); ++p) {
       vibration::CraigBamptonReducer reducer = make_reducer(p);
+      borrow(p);
       take(p, reducer.reduce(part_options(p, cbo), &log));
       give_back(p);
     }
   } else {
-    // The parts from the last to the first (the set-up's order backwards:
-    // one lent one at a time may still hold the last part's factor), then
-    // from the first: the first part's factor serves both passes without
-    // being lent twice.
+    // K and M of every part in order (no factor: a massless part is named
+    // in order); the set-up's solves from the last part to the first (the
+    // set-up's order backwards: a lender one at a time may still hold the
+    // last part's factor), then the fixed-interface modes from the first,
+    // whose factor serves both without being lent twice.
     reducers.clear();
+    for (size_t p = 0; p < parts.size(); ++p) reducers.push_back(make_reducer(p));
+    cbo.fixed_interface_modes = false;  // the bound: the set-up's solves only
     for (size_t p = parts.size(); p-- > 0;) {
-      reducers.push_back(make_reducer(p));
+      borrow(p);
+      take(p, reducers[p].reduce(part_options(p, cbo), &log));
       if (p > 0) give_back(p);
     }
-    std::reverse(reducers.begin(), reducers.end());  // in `parts` order
-    cbo.fixed_interface_modes = false;  // no solve
-    for (size_t p = 0; p < parts.size(); ++p) take(p, reducers[p].reduce(part_options(p, cbo), &log));
     build_matrices();
     for (const mech::Frame& frame : poses)
       fmax_estimate = std::max(fmax_estimate, solve(frame, options.modes).frequency_hz(options.modes - 1));
@@ -337,8 +339,9 @@ vibration::CraigBamptonReducer AssemblyModes::Impl::make_reducer(size_t p) {
   const PartRed& pr = parts[p];
   std::vector<vibration::PartInterface> interfaces;
   for (const CbInterface& i : pr.interfaces) interfaces.push_back({i.name, i.columns});
-  // A part of the ground is reduced held: modes over the free equations.
-  return vibration::CraigBamptonReducer(borrow(p), interfaces, pr.label, pr.held);
+  // A part of the ground is reduced held: modes over the free equations. No
+  // solve here: the factor is borrowed around the reductions.
+  return vibration::CraigBamptonReducer(assembly.supported_analysis(pr.body), interfaces, pr.label, pr.held);
 }
 
 vibration::CraigBamptonOptions AssemblyModes::Impl::part_options(size_t p,

@@ -305,7 +305,8 @@ struct CraigBamptonReducer::Impl {
   MatrixXd G, R;
   fem::LinearStaticAnalysis* supported = nullptr;  // lent, or null: `own`
   std::unique_ptr<OwnFactor> own;
-  std::unique_ptr<PartSolver> solver;
+  StaticSolve static_solve;  // K_s^-1 with the analysis lent or `own`
+  std::unique_ptr<PartSolver> solver;  // made by the first reduce()
   MatrixXd constraint_modes, mass_psi, static_response;  // Psi, M Psi, X_0 = K_0^+ M Psi
   double factor_nonzeros = 0.0;
   std::array<double, 5> setup_phase{};
@@ -320,6 +321,8 @@ struct CraigBamptonReducer::Impl {
 
   fem::EigenSolution block_lanczos(double cutoff_hz, const CraigBamptonOptions& options) const;
   fem::EigenSolution spectra_lanczos(double cutoff_hz, const CraigBamptonOptions& options) const;
+  // The solves of the set-up (Z_G, Psi, X_0), on the first reduce().
+  void solve_set_up();
   CraigBamptonModel reduce(const CraigBamptonOptions& options, const Log* log);
 };
 
@@ -377,7 +380,6 @@ CraigBamptonReducer::Impl::Impl(const fem::FeModel& part, const std::vector<Part
       R.col(k) = restrict_rows(field, dofs);
     }
   }
-  StaticSolve static_solve;
   if (supported) {
     const fem::DofMap& sd = supported->dofs();
     if (free_body) {
@@ -410,14 +412,19 @@ CraigBamptonReducer::Impl::Impl(const fem::FeModel& part, const std::vector<Part
         full.col(k) = Eigen::Map<const Eigen::VectorXd>(u[size_t(k)].data(), 3 * nodes);
       return restrict_rows(full, dofs);
     };
-    factor_nonzeros = supported->solver_statistics().factor_nonzeros;
   } else {
     own = std::make_unique<OwnFactor>(K, support_equations, label);
     static_solve = [o = own.get()](const MatrixXd& B) { return o->solve(B); };
     factor_nonzeros = own->factor_nonzeros();
   }
   setup_phase[0] = phase.seconds();
-  phase.restart();
+  setup_seconds = clock.seconds();
+}
+
+void CraigBamptonReducer::Impl::solve_set_up() {
+  const Stopwatch clock;
+  Stopwatch phase;
+  if (supported) factor_nonzeros = supported->solver_statistics().factor_nonzeros;
   solver = std::make_unique<PartSolver>(static_solve, G, R, label);
   constraint_modes = solver->constraint_modes();
   setup_phase[1] = phase.seconds();
@@ -428,7 +435,7 @@ CraigBamptonReducer::Impl::Impl(const fem::FeModel& part, const std::vector<Part
   static_response = solver->fixed_interface_inverse(mass_psi);
   setup_phase[3] = phase.seconds();
   setup_solves = solver->solves();
-  setup_seconds = clock.seconds();
+  setup_seconds += clock.seconds();
 }
 
 fem::EigenSolution CraigBamptonReducer::Impl::block_lanczos(double cutoff_hz,
@@ -601,6 +608,7 @@ fem::EigenSolution CraigBamptonReducer::Impl::spectra_lanczos(double cutoff_hz,
 
 CraigBamptonModel CraigBamptonReducer::Impl::reduce(const CraigBamptonOptions& options, const Log* log) {
   check_options(options, label);
+  if (!solver) solve_set_up();
   const Stopwatch clock;
   const long long solves_before = solver->solves();
   CraigBamptonModel out;

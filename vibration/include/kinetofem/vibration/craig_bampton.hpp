@@ -183,12 +183,13 @@ struct CraigBamptonModel {
 };
 
 // One part's reduction in one pass over its factorization (header): the
-// constructor assembles K and M, solves Z_G and X_0 and forms Psi; reduce()
-// then gives the static reduction (fixed_interface_modes = false: no solve)
-// or the final one (the fixed-interface modes' solves only), as often as
-// asked. The factorization (its own, or the analysis lent) is used by the
-// constructor and by reduce() with fixed-interface modes; a lent analysis
-// must outlive those calls. Memory: K, M and G, Z_G, Psi, M Psi, X_0 (n x 5 n_b)
+// constructor assembles K and M and checks the interfaces and supports (no
+// solve: a lent analysis need not be factorized yet); the first reduce()
+// solves Z_G and X_0 and forms Psi; reduce() gives the static reduction
+// (fixed_interface_modes = false: no further solve) or the final one (the
+// fixed-interface modes' solves only), as often as asked. A lent analysis
+// must be factorized during the reduce() calls that solve and outlive the
+// reducer. Memory: K, M and G, Z_G, Psi, M Psi, X_0 (n x 5 n_b)
 // until the reducer goes.
 class CraigBamptonReducer {
  public:
