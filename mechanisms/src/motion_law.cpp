@@ -195,4 +195,11 @@ std::string TabulatedLaw::describe() const {
   return fmt::format("tabulated({}, {} rows, t {}..{} s)", source_, times_.size(), times_.front(), times_.back());
 }
 
+DelayedLaw::DelayedLaw(std::shared_ptr<const MotionLaw> law, double delay_s) : law_(std::move(law)), delay_(delay_s) {
+  require(law_ != nullptr, "delayed motion law: no law to delay");
+  require(std::isfinite(delay_s) && delay_s >= 0, "delayed motion law: the delay {} s must be finite and >= 0", delay_s);
+}
+
+std::string DelayedLaw::describe() const { return fmt::format("{}, started at t = {:.6g} s", law_->describe(), delay_); }
+
 }  // namespace kinetofem::mech

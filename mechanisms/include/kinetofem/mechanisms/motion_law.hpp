@@ -128,4 +128,20 @@ class TabulatedLaw final : public MotionLaw {
   std::string source_;
 };
 
+// Another law started `delay_s` later: s(t) = law(t - delay), so it dwells at
+// law(0) until the delay (a second motion after a first, e.g. a gripper
+// turned after the arm's stroke). duration() = delay + the law's duration.
+class DelayedLaw final : public MotionLaw {
+ public:
+  DelayedLaw(std::shared_ptr<const MotionLaw> law, double delay_s);
+  MotionState at(double t) const override { return law_->at(t - delay_); }
+  double stroke() const override { return law_->stroke(); }
+  double duration() const override { return delay_ + law_->duration(); }
+  std::string describe() const override;
+
+ private:
+  std::shared_ptr<const MotionLaw> law_;
+  double delay_;
+};
+
 }  // namespace kinetofem::mech
