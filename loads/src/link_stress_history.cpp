@@ -3,6 +3,7 @@
 #include "kinetofem/solver/rigid_body.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include <Eigen/SVD>
 
@@ -152,6 +153,112 @@ void append_contact_patterns(const LinkContactHistory& contact, std::vector<std:
   for (Eigen::Index k = 0; k < rank; ++k) names.push_back(fmt::format("contact.shape_{}", k + 1));
 }
 
+// Nodes per chunk of the fused envelope kernel: a chunk's tiles of 128
+// frames (9.4 MB) stay well inside the last-level cache and are long enough
+// for the BLAS to run at its rate.
+constexpr Eigen::Index kChunkNodes = 1024, kChunkFrames = 128;
+
+// The pattern fields reordered chunk by chunk into component-major rows
+// (a chunk of n nodes: its n sigma_xx rows, then its n sigma_yy rows, ...),
+// so that a tile's von Mises stresses and magnitudes are array operations
+// over contiguous components that the compiler vectorizes.
+struct ChunkedPatterns {
+  Eigen::MatrixXd stress;   // 6 N x m
+  Eigen::MatrixXd elastic;  // 3 N x m
+};
+
+Eigen::MatrixXd component_major(const Eigen::MatrixXd& node_major, int components) {
+  const Eigen::Index nodes = node_major.rows() / components;
+  Eigen::MatrixXd out(node_major.rows(), node_major.cols());
+  for (Eigen::Index i0 = 0; i0 < nodes; i0 += kChunkNodes) {
+    const Eigen::Index n = std::min(kChunkNodes, nodes - i0);
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (int c = 0; c < components; ++c) out.row(components * i0 + c * n + j) = node_major.row(components * (i0 + j) + c);
+  }
+  return out;
+}
+
+// The fields of a block's written frames (columns in the order of `steps`,
+// local indices into the block), filled by fuse_block.
+struct WrittenFields {
+  std::vector<Eigen::Index> steps;
+  Eigen::MatrixXd stress;     // 6 N x written, node-major Voigt
+  Eigen::MatrixXd elastic;    // 3 N x written, node-major
+  Eigen::MatrixXd von_mises;  // N x written
+  // fuse_block's work space, kept between blocks.
+  Eigen::MatrixXd tile_stress, tile_elastic;
+  Eigen::ArrayXd von_mises_tile, magnitude_tile;
+};
+
+// One block of frames (coefficients C, m x count, the first at frame
+// `first`) into the envelope, without forming the block's full fields: per
+// chunk of nodes, the chunk's pattern rows times C give its stresses and
+// displacements in a tile that stays in cache, and von Mises, magnitude and
+// the envelope are taken from the tile at once. The full products would
+// write and read back 9 N doubles a frame from memory, which for many frames
+// costs several times their arithmetic. The tiles' products go through the
+// BLAS (threaded by it; several times Eigen's generic kernel on these tall,
+// skinny products, see dense_product.hpp). The folds run on the calling
+// thread: an OpenMP team between the BLAS calls spins against the BLAS's
+// own threads (measured: most of the time went to the spinning). Each node
+// folds the frames in order, so on ties the earliest frame still wins.
+// Frames from `envelope_end` on enter no envelope.
+void fuse_block(const ChunkedPatterns& patterns, const Eigen::Ref<const Eigen::MatrixXd>& C, Eigen::Index first,
+                Eigen::Index envelope_end, WrittenFields& fields, LinkEnvelope& env) {
+  const Eigen::Index nodes = patterns.stress.rows() / 6, count = C.cols();
+  const Eigen::Index folded = std::clamp<Eigen::Index>(envelope_end - first, 0, count);
+  fields.tile_stress.resize(6 * std::min(kChunkNodes, nodes), std::min(kChunkFrames, count));
+  fields.tile_elastic.resize(3 * std::min(kChunkNodes, nodes), std::min(kChunkFrames, count));
+  fields.von_mises_tile.resize(std::min(kChunkNodes, nodes));
+  fields.magnitude_tile.resize(std::min(kChunkNodes, nodes));
+  for (Eigen::Index k0 = 0; k0 < count; k0 += kChunkFrames) {
+    const Eigen::Index kn = std::min(kChunkFrames, count - k0);
+    // The written frames among these, as (frame, column of `fields`).
+    std::vector<std::pair<Eigen::Index, Eigen::Index>> write;
+    for (Eigen::Index w = 0; w < Eigen::Index(fields.steps.size()); ++w)
+      if (fields.steps[size_t(w)] >= k0 && fields.steps[size_t(w)] < k0 + kn) write.emplace_back(fields.steps[size_t(w)], w);
+    const Eigen::Index fold_end = std::clamp<Eigen::Index>(folded, k0, k0 + kn);
+    if (fold_end == k0 && write.empty()) continue;
+    const auto Ck = C.middleCols(k0, kn);
+    for (Eigen::Index i0 = 0; i0 < nodes; i0 += kChunkNodes) {
+      const Eigen::Index n = std::min(kChunkNodes, nodes - i0);
+      auto s = fields.tile_stress.topLeftCorner(6 * n, kn);
+      auto e = fields.tile_elastic.topLeftCorner(3 * n, kn);
+      fem::blas_product(patterns.stress.middleRows(6 * i0, 6 * n), Ck, s);
+      fem::blas_product(patterns.elastic.middleRows(3 * i0, 3 * n), Ck, e);
+      auto vm = fields.von_mises_tile.head(n);
+      auto magnitude = fields.magnitude_tile.head(n);
+      auto next_written = write.begin();
+      for (Eigen::Index k = k0; k < k0 + kn; ++k) {
+        const bool written = next_written != write.end() && next_written->first == k;
+        if (k >= fold_end && !written) continue;
+        const auto sc = [&](int c) { return s.col(k - k0).segment(c * n, n).array(); };
+        const auto ec = [&](int c) { return e.col(k - k0).segment(c * n, n).array(); };
+        // fem::von_mises, on the chunk's nodes at once.
+        vm = (0.5 * ((sc(0) - sc(1)).square() + (sc(1) - sc(2)).square() + (sc(2) - sc(0)).square()) +
+              3.0 * (sc(3).square() + sc(4).square() + sc(5).square()))
+                 .sqrt();
+        if (k < fold_end) {
+          magnitude = (ec(0).square() + ec(1).square() + ec(2).square()).sqrt();
+          const std::size_t step = std::size_t(first + k);
+          for (Eigen::Index j = 0; j < n; ++j) fold_node(env, i0 + j, step, vm[j], magnitude[j]);
+        }
+        if (written) {
+          const Eigen::Index w = next_written->second;
+          fields.von_mises.col(w).segment(i0, n) = vm.matrix();
+          for (int c = 0; c < 6; ++c)
+            Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<6>>(fields.stress.col(w).data() + 6 * i0 + c, n) =
+                sc(c).matrix();
+          for (int c = 0; c < 3; ++c)
+            Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<3>>(fields.elastic.col(w).data() + 3 * i0 + c, n) =
+                ec(c).matrix();
+          ++next_written;
+        }
+      }
+    }
+  }
+}
+
 // Every output time as a combination of the pattern fields (header: the
 // superposition path), whatever built the patterns and their coefficients.
 void superpose_patterns(fem::LinearStaticAnalysis& analysis, const PatternLoadHistory& loads,
@@ -201,14 +308,27 @@ void superpose_patterns(fem::LinearStaticAnalysis& analysis, const PatternLoadHi
     patterns.stress_pa.col(k) = Eigen::Map<const Eigen::VectorXd>(stress.stress_pa.data(), 6 * nodes);
   }
 
-  // 3. Every frame as a combination, in blocks of frames. The products read
-  // the pattern fields once per block (memory-bound for small blocks), so
-  // blocks are as long as about 256 MB of buffers allow; the buffers are
-  // allocated once (fresh ones per block cost more in page faults than the
-  // arithmetic).
+  // 3. Every frame as a combination, in blocks of frames: the envelope by
+  // fuse_block (node chunks, no full fields), the written frames' fields
+  // gathered on the way, then per frame in order the support check and the
+  // callback. Blocks are as long as about 256 MB of written-field buffers
+  // allow (all frames written is the worst case); the buffers are allocated
+  // once (fresh ones per block cost more in page faults than the arithmetic).
   const Eigen::Index block = std::clamp<Eigen::Index>(
-      Eigen::Index(256e6 / (8.0 * 9.0 * double(std::max<fem::Index>(nodes, 1)))), 1, 512);
-  Eigen::MatrixXd stress(6 * nodes, block), elastic(3 * nodes, block), reactions(reaction_patterns.rows(), block);
+      Eigen::Index(256e6 / (8.0 * 10.0 * double(std::max<fem::Index>(nodes, 1)))), 1, 512);
+  std::vector<char> written(size_t(steps), 0);
+  Eigen::Index most_written = 0;
+  for (Eigen::Index first = 0; first < steps; first += block) {
+    Eigen::Index count = 0;
+    for (Eigen::Index k = first; k < std::min(first + block, steps); ++k)
+      if (on_step && wants_callback(options, size_t(k))) written[size_t(k)] = 1, ++count;
+    most_written = std::max(most_written, count);
+  }
+  WrittenFields fields;
+  fields.stress.resize(6 * nodes, most_written);
+  fields.elastic.resize(3 * nodes, most_written);
+  fields.von_mises.resize(nodes, most_written);
+  Eigen::MatrixXd reactions(reaction_patterns.rows(), block);
   // The support reaction is measured against sum_k |c_k| sum_i |P_ik|, a bound
   // of the step's total load sum_i |f_i| (triangle inequality; the patterns
   // are sparse and hardly cancel, so the bound is close), instead of forming
@@ -219,32 +339,34 @@ void superpose_patterns(fem::LinearStaticAnalysis& analysis, const PatternLoadHi
                           .colwise()
                           .norm()
                           .sum();
-  Eigen::VectorXd von_mises(nodes), magnitude(nodes);
+  const ChunkedPatterns chunked{component_major(patterns.stress_pa, 6),
+                                component_major(patterns.elastic_displacement_m, 3)};
+  const Eigen::Index envelope_end =
+      options.envelope_steps == 0 ? steps : std::min<Eigen::Index>(steps, Eigen::Index(options.envelope_steps));
   for (Eigen::Index first = 0; first < steps; first += block) {
     const Eigen::Index count = std::min(block, steps - first);
     const auto C = patterns.coefficients.middleCols(first, count);
-    fem::blas_product(patterns.stress_pa, C, stress.leftCols(count));
-    fem::blas_product(patterns.elastic_displacement_m, C, elastic.leftCols(count));
+    fields.steps.clear();
+    for (Eigen::Index k = 0; k < count; ++k)
+      if (written[size_t(first + k)]) fields.steps.push_back(k);
+    fuse_block(chunked, C, first, envelope_end, fields, env);
     reactions.leftCols(count).noalias() = reaction_patterns * C;
+    Eigen::Index w = 0;
     for (Eigen::Index k = 0; k < count; ++k) {
       const std::size_t step = std::size_t(first + k);
       const double load_bound = std::max(C.col(k).cwiseAbs().dot(pattern_load), 1e-300);
       check_support_reaction(env, reactions.col(k).norm() / load_bound, loads.part, loads.times[step], options);
-      const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> s(stress.col(k).data(), 6, nodes);
-      const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> e(elastic.col(k).data(), 3, nodes);
-      const bool in_envelope = options.envelope_steps == 0 || step < options.envelope_steps;
-#pragma omp parallel for schedule(static)
-      for (fem::Index i = 0; i < nodes; ++i) {
-        von_mises[i] = fem::von_mises(s.col(i));
-        magnitude[i] = e.col(i).norm();
-        if (in_envelope) fold_node(env, i, step, von_mises[i], magnitude[i]);
-      }
-      if (on_step && wants_callback(options, step)) {
-        const fem::DisplacementField u = e.transpose();
+      if (written[step]) {
+        const fem::DisplacementField u =
+            Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(fields.elastic.col(w).data(), 3, nodes)
+                .transpose();
         fem::NodalStress nodal;
-        nodal.stress_pa = s.transpose();
-        nodal.von_mises_pa = von_mises;
+        nodal.stress_pa =
+            Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>>(fields.stress.col(w).data(), 6, nodes)
+                .transpose();
+        nodal.von_mises_pa = fields.von_mises.col(w);
         on_step(step, u, nodal);
+        ++w;
       }
       progress.advance(long(step + 1));
     }
