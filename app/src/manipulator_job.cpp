@@ -21,6 +21,7 @@
 #include "kinetofem/mechanisms/time_grid.hpp"
 #include "kinetofem/pipeline/manipulator_preset.hpp"
 #include "kinetofem/driver/motion_to_stress.hpp"
+#include "kinetofem/pipeline/rotary_module_stage.hpp"
 #include "kinetofem/pipeline/run_report.hpp"
 
 namespace kinetofem::app {
@@ -73,6 +74,24 @@ const std::vector<KeySpec>& manipulator_schema() {
       {.path = "static_study.enabled", .type = Type::Boolean, .default_number = 1, .doc = "also solve the static pose study (gravity and payload, at rest)"},
       {.path = "static_study.dphi_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 0, .min = -180, .max = 180,
        .doc = "lever angle of the static pose from the design position"},
+      {.path = "rotary_module.enabled", .type = Type::Boolean, .default_number = 0,
+       .doc = "after the motion, the gripper turns the casting about the arm's axis (out of the plane): the spatial multibody "
+              "core and every part's stress over the motion and the turn (docs/multibody.md, rotary module)"},
+      {.path = "rotary_module.angle_deg", .type = Type::Number, .unit = "deg", .to_si = kDeg, .default_number = 90, .min = -360, .max = 360,
+       .doc = "the turn about the arm's axis A -> C (cycloidal law)"},
+      {.path = "rotary_module.start_s", .type = Type::Number, .unit = "s", .min = 0,
+       .doc = "when the turn starts (default: at the end of the lever's motion)"},
+      {.path = "rotary_module.duration_s", .type = Type::Number, .unit = "s", .default_number = 1.0, .min = 0, .max = 1e4, .min_exclusive = true,
+       .doc = "how long the turn takes"},
+      {.path = "rotary_module.gripper_inertia_kgm2", .type = Type::Vector3, .unit = "kg*m^2",
+       .default_vector = std::array<double, 3>{0.15, 0.15, 0.15},
+       .doc = "the turning gripper's principal inertias about H in the arm's axes (x along A -> C, y in the plane, z along the pins)"},
+      {.path = "rotary_module.casting_offset_mm", .type = Type::Vector3, .unit = "mm", .to_si = kMm,
+       .default_vector = std::array<double, 3>{0.0, -120.0, 0.0},
+       .doc = "the casting's centre of mass from H, arm axes at the start"},
+      {.path = "rotary_module.casting_inertia_kgm2", .type = Type::Vector3, .unit = "kg*m^2",
+       .default_vector = std::array<double, 3>{0.05, 0.05, 0.05},
+       .doc = "the casting's principal inertias about its centre, arm axes at the start"},
     };
     for (auto&& k : lever_chain_dimension_keys("mechanism.")) s.push_back(std::move(k));
     add_manipulator_assembly_keys(s);
@@ -218,8 +237,40 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     return read_manipulator_assembly(c, chain);
   }, run_case);
 
+  // The rotary module's keys, read before any work.
+  std::optional<pipeline::RotaryModuleSettings> rotary;
+  if (c.boolean("rotary_module.enabled")) {
+    pipeline::RotaryModuleSettings r;
+    r.angle_rad = c.number("rotary_module.angle_deg");
+    r.start_s = c.has("rotary_module.start_s") ? c.number("rotary_module.start_s") : run_case.times.back();
+    r.duration_s = c.number("rotary_module.duration_s");
+    for (const char* key : {"rotary_module.gripper_inertia_kgm2", "rotary_module.casting_inertia_kgm2"}) {
+      const Eigen::Vector3d v = c.vector3(key);
+      require(v.minCoeff() > 0 && v.allFinite(), "{} = [{}, {}, {}]: principal inertias must be positive",
+              c.where(key), v.x(), v.y(), v.z());
+    }
+    r.gripper_inertia_kgm2 = c.vector3("rotary_module.gripper_inertia_kgm2").asDiagonal();
+    r.casting_offset_m = c.vector3("rotary_module.casting_offset_mm");
+    r.casting_inertia_kgm2 = c.vector3("rotary_module.casting_inertia_kgm2").asDiagonal();
+    require(!run_case.parts.empty(), "{}: the rotary module's stage needs the links as FE parts", c.where("rotary_module.enabled"));
+    rotary = r;
+  }
+
   // ---- run the pipeline --------------------------------------------------------
   const driver::MotionStressRun run = driver::run_motion_to_stress(run_case, log);
+  std::optional<pipeline::RotaryModuleSummary> turned;
+  if (rotary) {
+    try {
+      const std::vector<pipeline::Part> parts =
+          pipeline::build_part_models(run_case.parts, run_case.material, run_case.mesh, log);
+      std::filesystem::path file = run.results_file;
+      file.replace_filename(file.stem().string() + ".rotary_module.h5");
+      turned = pipeline::analyse_rotary_module(run.model, parts, run_case.times, *rotary, file, run_case.provenance,
+                                               run_case.stress, log);
+    } catch (const Error& e) {
+      fail("{}: rotary module: {}", c.path().string(), e.what());
+    }
+  }
 
   // ---- summary -----------------------------------------------------------------
   const pipeline::PartExtremes pe = pipeline::part_extremes(run.parts);
@@ -238,6 +289,16 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
   print_stage_summaries(run);
   print_published_comparison(summary, def.type, run_case.static_pose.has_value());
   summary.total_seconds = total.seconds();
+  if (turned) {
+    std::printf("  rotary module: the casting turned %.1f deg about the arm; peak torque %.3f N m at t = %.4f s (the arm's "
+                "torsion); parts under the spatial loads over the motion and the turn:\n",
+                rotary->angle_rad / kDeg, turned->peak_torque_nm, turned->peak_torque_time_s);
+    for (const pipeline::PartSummary& p : turned->parts)
+      std::printf("    %-8s peak von Mises %.3f MPa at t = %.4f s, deformation %.4f mm; equilibrium %.1e\n", p.body.c_str(),
+                  p.peak_von_mises_pa / kMpa, p.peak_von_mises_time_s, p.peak_displacement_m / kMm,
+                  p.worst_equilibrium_residual);
+    std::printf("    results: %s (+ .xdmf)\n", turned->results_file.string().c_str());
+  }
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", summary.results_file.string().c_str(), summary.total_seconds);
   return summary;
 }

@@ -4,10 +4,14 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 
 #include "kinetofem/core/error.hpp"
 
 namespace kinetofem::mech::spatial {
+
+std::string rotary_joint_name(const RotaryModule& module) { return fmt::format("{}.joint", module.name); }
+std::string rotary_drive_name(const RotaryModule& module) { return fmt::format("{}.drive", module.name); }
 
 Model with_rotary_module(Model model, const RotaryModule& module) {
   const auto carrier = std::find_if(model.bodies.begin(), model.bodies.end(),

@@ -48,7 +48,7 @@ struct RotaryModule {
 Model with_rotary_module(Model model, const RotaryModule& module);
 
 // The names of the module's joint and drive.
-inline std::string rotary_joint_name(const RotaryModule& module) { return module.name + ".joint"; }
-inline std::string rotary_drive_name(const RotaryModule& module) { return module.name + ".drive"; }
+std::string rotary_joint_name(const RotaryModule& module);
+std::string rotary_drive_name(const RotaryModule& module);
 
 }  // namespace kinetofem::mech::spatial

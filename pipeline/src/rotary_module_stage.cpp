@@ -1,0 +1,120 @@
+#include "kinetofem/pipeline/rotary_module_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kinetofem/core/error.hpp"
+#include "kinetofem/core/units.hpp"
+#include "kinetofem/mechanisms/manipulator_names.hpp"
+#include "kinetofem/mechanisms/spatial/from_planar.hpp"
+#include "kinetofem/mechanisms/spatial/kinematics.hpp"
+#include "kinetofem/mechanisms/spatial/rotary_module.hpp"
+#include "kinetofem/pipeline/spatial_histories.hpp"
+#include "kinetofem/postproc/results_writer.hpp"
+
+namespace kinetofem::pipeline {
+
+namespace names = mech::manipulator;
+
+namespace {
+
+// A planar part's attachments as the spatial loads take them.
+SpatialPart spatial_part(const Part& part, const mech::spatial::RotaryModule& module) {
+  SpatialPart out;
+  out.label = part.name();
+  out.model = part.model;
+  loads::SpatialLinkDefinition& a = out.attachments;
+  a.body = part.body();
+  require(part.held_face.empty(), "{}: a part of the ground (held on '{}') is not analysed with the rotary module yet",
+          part.name(), part.held_face);
+  for (const loads::JointAttachment& j : part.attachments.joints) {
+    require(j.distribution == loads::BoreLoad::DistributingCoupling,
+            "{}: joint '{}': with the rotary module a pin's load enters through a distributing coupling only (no "
+            "bearing pressure, no contact)",
+            part.name(), j.joint);
+    a.joints.push_back({j.joint, j.face_set});
+  }
+  for (const loads::DriveAttachment& d : part.attachments.drives) a.joints.push_back({d.drive, d.face_set});
+  for (const loads::PointMassAttachment& m : part.attachments.point_masses)
+    if (!(part.body() == module.carrier && (m.point_mass == names::kGripperMass || m.point_mass == names::kCastingMass)))
+      a.point_masses.push_back({m.point_mass, m.face_set});
+  require(part.attachments.transmissions.empty() && part.attachments.springs.empty() &&
+              part.attachments.point_forces.empty(),
+          "{}: transmissions, springs and point forces are not taken with the rotary module yet", part.name());
+  if (part.body() == module.carrier) {
+    // The module's bearing sits where the planar case hung the gripper.
+    std::string mount = names::kGripperMount;
+    for (const loads::PointMassAttachment& m : part.attachments.point_masses)
+      if (m.point_mass == names::kGripperMass) mount = m.face_set;
+    a.joints.push_back({mech::spatial::rotary_joint_name(module), mount});
+    a.joints.push_back({mech::spatial::rotary_drive_name(module), mount});
+  }
+  return out;
+}
+
+}  // namespace
+
+RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, const std::vector<Part>& parts,
+                                          const std::vector<double>& times, const RotaryModuleSettings& settings,
+                                          const std::filesystem::path& results_file,
+                                          const post::Provenance& provenance,
+                                          const loads::LinkStressOptions& options, const Log& log) {
+  require(times.size() >= 2, "rotary module: fewer than two output times");
+  require(settings.duration_s > 0 && std::isfinite(settings.duration_s) && settings.start_s >= 0,
+          "rotary module: its turn must take a positive time from a start >= 0 (start {} s, duration {} s)",
+          settings.start_s, settings.duration_s);
+  // The gripper and the casting, lumped at H on the planar arm, become the module.
+  mech::spatial::Model spatial = mech::spatial::from_planar(model);
+  const auto arm = std::find_if(spatial.bodies.begin(), spatial.bodies.end(),
+                                [](const mech::spatial::Body& b) { return b.name == names::kArm; });
+  require(arm != spatial.bodies.end(), "rotary module: the mechanism has no arm");
+  double gripper_kg = 0.0, casting_kg = 0.0;
+  for (const mech::spatial::PointMass& m : arm->point_masses) {
+    if (m.name == names::kGripperMass) gripper_kg += m.mass_kg;
+    if (m.name == names::kCastingMass) casting_kg += m.mass_kg;
+  }
+  std::erase_if(arm->point_masses, [](const mech::spatial::PointMass& m) {
+    return m.name == names::kGripperMass || m.name == names::kCastingMass;
+  });
+  mech::spatial::RotaryModule module;
+  // (std::string temporaries: assigning the short literals in place trips
+  // GCC 12's -Wrestrict false positive.)
+  module.carrier = std::string(names::kArm);
+  module.mount_point = std::string(names::kPointH);
+  const Eigen::Vector3d c = arm->points.at(names::kPointC);  // the arm's axis: from A (its origin) towards C
+  module.axis_carrier = c;
+  module.mass_kg = gripper_kg;
+  module.inertia_kgm2 = settings.gripper_inertia_kgm2;
+  module.payload = {names::kCastingMass, casting_kg, settings.casting_offset_m, settings.casting_inertia_kgm2};
+  module.angle = std::make_shared<mech::DelayedLaw>(
+      std::make_shared<mech::CycloidalLaw>(settings.angle_rad, settings.duration_s), settings.start_s);
+  spatial = mech::spatial::with_rotary_module(std::move(spatial), module);
+
+  RotaryModuleSummary out;
+  out.times = times;
+  const double step = (times.back() - times.front()) / double(times.size() - 1);
+  const double end = settings.start_s + settings.duration_s;
+  while (out.times.back() < end - 1e-9 * step) out.times.push_back(std::min(end, out.times.back() + step));
+  log.info("rotary module: the casting turned {:.1f} deg about the arm from t = {:.4g} s in {:.4g} s; {} output times "
+           "through the spatial multibody core",
+           settings.angle_rad / units::kDeg, settings.start_s, settings.duration_s, out.times.size());
+  const mech::spatial::Results run = mech::spatial::run_kinematics(mech::spatial::System(spatial), out.times);
+  const std::string drive = mech::spatial::rotary_drive_name(module);
+  for (const mech::spatial::Frame& f : run.frames)
+    for (const mech::spatial::DriveState& d : f.drives)
+      if (d.name == drive && std::abs(d.effort) > std::abs(out.peak_torque_nm)) {
+        out.peak_torque_nm = d.effort;
+        out.peak_torque_time_s = f.t;
+      }
+
+  post::ResultsWriter writer(results_file, provenance);
+  write_spatial_mechanism_histories(writer, spatial, run);
+  for (const Part& p : parts)
+    out.parts.push_back(
+        analyse_spatial_part_over_motion(spatial_part(p, module), spatial, run.frames, writer, options, log));
+  writer.commit();
+  out.results_file = results_file;
+  return out;
+}
+
+}  // namespace kinetofem::pipeline
