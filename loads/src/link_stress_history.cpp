@@ -158,26 +158,6 @@ void append_contact_patterns(const LinkContactHistory& contact, std::vector<std:
 // for the BLAS to run at its rate.
 constexpr Eigen::Index kChunkNodes = 1024, kChunkFrames = 128;
 
-// The pattern fields reordered chunk by chunk into component-major rows
-// (a chunk of n nodes: its n sigma_xx rows, then its n sigma_yy rows, ...),
-// so that a tile's von Mises stresses and magnitudes are array operations
-// over contiguous components that the compiler vectorizes.
-struct ChunkedPatterns {
-  Eigen::MatrixXd stress;   // 6 N x m
-  Eigen::MatrixXd elastic;  // 3 N x m
-};
-
-Eigen::MatrixXd component_major(const Eigen::MatrixXd& node_major, int components) {
-  const Eigen::Index nodes = node_major.rows() / components;
-  Eigen::MatrixXd out(node_major.rows(), node_major.cols());
-  for (Eigen::Index i0 = 0; i0 < nodes; i0 += kChunkNodes) {
-    const Eigen::Index n = std::min(kChunkNodes, nodes - i0);
-    for (Eigen::Index j = 0; j < n; ++j)
-      for (int c = 0; c < components; ++c) out.row(components * i0 + c * n + j) = node_major.row(components * (i0 + j) + c);
-  }
-  return out;
-}
-
 // The fields of a block's written frames (columns in the order of `steps`,
 // local indices into the block), filled by fuse_block.
 struct WrittenFields {
@@ -186,7 +166,7 @@ struct WrittenFields {
   Eigen::MatrixXd elastic;    // 3 N x written, node-major
   Eigen::MatrixXd von_mises;  // N x written
   // fuse_block's work space, kept between blocks.
-  Eigen::MatrixXd tile_stress, tile_elastic;
+  Eigen::MatrixXd chunk_stress, chunk_elastic, tile_stress, tile_elastic;
   Eigen::ArrayXd von_mises_tile, magnitude_tile;
 };
 
@@ -203,29 +183,46 @@ struct WrittenFields {
 // own threads (measured: most of the time went to the spinning). Each node
 // folds the frames in order, so on ties the earliest frame still wins.
 // Frames from `envelope_end` on enter no envelope.
-void fuse_block(const ChunkedPatterns& patterns, const Eigen::Ref<const Eigen::MatrixXd>& C, Eigen::Index first,
+void fuse_block(const LinkLoadPatterns& patterns, const Eigen::Ref<const Eigen::MatrixXd>& C, Eigen::Index first,
                 Eigen::Index envelope_end, WrittenFields& fields, LinkEnvelope& env) {
-  const Eigen::Index nodes = patterns.stress.rows() / 6, count = C.cols();
+  const Eigen::Index nodes = patterns.stress_pa.rows() / 6, count = C.cols();
   const Eigen::Index folded = std::clamp<Eigen::Index>(envelope_end - first, 0, count);
+  fields.chunk_stress.resize(6 * std::min(kChunkNodes, nodes), C.rows());
+  fields.chunk_elastic.resize(3 * std::min(kChunkNodes, nodes), C.rows());
   fields.tile_stress.resize(6 * std::min(kChunkNodes, nodes), std::min(kChunkFrames, count));
   fields.tile_elastic.resize(3 * std::min(kChunkNodes, nodes), std::min(kChunkFrames, count));
   fields.von_mises_tile.resize(std::min(kChunkNodes, nodes));
   fields.magnitude_tile.resize(std::min(kChunkNodes, nodes));
-  for (Eigen::Index k0 = 0; k0 < count; k0 += kChunkFrames) {
-    const Eigen::Index kn = std::min(kChunkFrames, count - k0);
-    // The written frames among these, as (frame, column of `fields`).
-    std::vector<std::pair<Eigen::Index, Eigen::Index>> write;
-    for (Eigen::Index w = 0; w < Eigen::Index(fields.steps.size()); ++w)
-      if (fields.steps[size_t(w)] >= k0 && fields.steps[size_t(w)] < k0 + kn) write.emplace_back(fields.steps[size_t(w)], w);
-    const Eigen::Index fold_end = std::clamp<Eigen::Index>(folded, k0, k0 + kn);
-    if (fold_end == k0 && write.empty()) continue;
-    const auto Ck = C.middleCols(k0, kn);
-    for (Eigen::Index i0 = 0; i0 < nodes; i0 += kChunkNodes) {
-      const Eigen::Index n = std::min(kChunkNodes, nodes - i0);
+  if (folded == 0 && fields.steps.empty()) return;
+  for (Eigen::Index i0 = 0; i0 < nodes; i0 += kChunkNodes) {
+    const Eigen::Index n = std::min(kChunkNodes, nodes - i0);
+    // The chunk's pattern rows component-major (its n sigma_xx rows, then
+    // its n sigma_yy rows, ...): the tiles' components are then contiguous
+    // and the von Mises stresses and magnitudes below vectorize. Copied once
+    // a block, a small share of the products' reads; kept in cache for them.
+    auto S = fields.chunk_stress.topRows(6 * n);
+    auto E = fields.chunk_elastic.topRows(3 * n);
+    for (int c = 0; c < 6; ++c)
+      S.middleRows(c * n, n) = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, 6>>(
+          patterns.stress_pa.data() + 6 * i0 + c, n, S.cols(), Eigen::Stride<Eigen::Dynamic, 6>(6 * nodes, 6));
+    for (int c = 0; c < 3; ++c)
+      E.middleRows(c * n, n) = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, 3>>(
+          patterns.elastic_displacement_m.data() + 3 * i0 + c, n, E.cols(),
+          Eigen::Stride<Eigen::Dynamic, 3>(3 * nodes, 3));
+    for (Eigen::Index k0 = 0; k0 < count; k0 += kChunkFrames) {
+      const Eigen::Index kn = std::min(kChunkFrames, count - k0);
+      // The written frames among these, as (frame, column of `fields`).
+      std::vector<std::pair<Eigen::Index, Eigen::Index>> write;
+      for (Eigen::Index w = 0; w < Eigen::Index(fields.steps.size()); ++w)
+        if (fields.steps[size_t(w)] >= k0 && fields.steps[size_t(w)] < k0 + kn)
+          write.emplace_back(fields.steps[size_t(w)], w);
+      const Eigen::Index fold_end = std::clamp<Eigen::Index>(folded, k0, k0 + kn);
+      if (fold_end == k0 && write.empty()) continue;
+      const auto Ck = C.middleCols(k0, kn);
       auto s = fields.tile_stress.topLeftCorner(6 * n, kn);
       auto e = fields.tile_elastic.topLeftCorner(3 * n, kn);
-      fem::blas_product(patterns.stress.middleRows(6 * i0, 6 * n), Ck, s);
-      fem::blas_product(patterns.elastic.middleRows(3 * i0, 3 * n), Ck, e);
+      fem::blas_product(S, Ck, s);
+      fem::blas_product(E, Ck, e);
       auto vm = fields.von_mises_tile.head(n);
       auto magnitude = fields.magnitude_tile.head(n);
       auto next_written = write.begin();
@@ -339,8 +336,6 @@ void superpose_patterns(fem::LinearStaticAnalysis& analysis, const PatternLoadHi
                           .colwise()
                           .norm()
                           .sum();
-  const ChunkedPatterns chunked{component_major(patterns.stress_pa, 6),
-                                component_major(patterns.elastic_displacement_m, 3)};
   const Eigen::Index envelope_end =
       options.envelope_steps == 0 ? steps : std::min<Eigen::Index>(steps, Eigen::Index(options.envelope_steps));
   for (Eigen::Index first = 0; first < steps; first += block) {
@@ -349,7 +344,7 @@ void superpose_patterns(fem::LinearStaticAnalysis& analysis, const PatternLoadHi
     fields.steps.clear();
     for (Eigen::Index k = 0; k < count; ++k)
       if (written[size_t(first + k)]) fields.steps.push_back(k);
-    fuse_block(chunked, C, first, envelope_end, fields, env);
+    fuse_block(patterns, C, first, envelope_end, fields, env);
     reactions.leftCols(count).noalias() = reaction_patterns * C;
     Eigen::Index w = 0;
     for (Eigen::Index k = 0; k < count; ++k) {
