@@ -79,6 +79,34 @@ void write_load_patterns(post::BodyWriter& body, loads::LinkLoadPatterns& patter
   body.write_load_patterns(data);
 }
 
+// The summary's fields an envelope gives: the peaks with their times and
+// places (body frame), the solver's record, the checks.
+void summarise_envelope(const loads::LinkEnvelope& env, const fem::Mesh& mesh, const std::vector<double>& times,
+                        PartSummary& ps) {
+  ps.peak_von_mises_pa = env.peak_von_mises_pa;
+  ps.peak_von_mises_time_s = times[std::size_t(env.peak_von_mises_step)];
+  ps.peak_von_mises_node = long(env.peak_von_mises_node);
+  ps.peak_von_mises_at_m = mesh.nodes.row(env.peak_von_mises_node).transpose();
+  ps.peak_displacement_m = env.peak_displacement_m;
+  ps.peak_displacement_time_s = times[std::size_t(env.peak_displacement_step)];
+  ps.factorize_seconds = env.solver.factorize_seconds;
+  ps.solve_seconds = env.solve_seconds;
+  ps.assembly_seconds = env.assembly_seconds;
+  ps.recovery_seconds = env.recovery_seconds;
+  ps.analyze_seconds = env.solver.analyze_seconds;
+  ps.factor_nonzeros = env.solver.factor_nonzeros;
+  ps.factor_bytes = env.solver.factor_bytes;
+  ps.factorization_flops = env.solver.factorization_flops;
+  ps.right_hand_sides = env.solved_right_hand_sides;
+  ps.output_times = long(times.size());
+  ps.superposed = env.patterns.has_value();
+  ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
+  ps.worst_support_reaction = env.worst_support_reaction;
+  ps.max_out_of_plane_moment_nm = env.max_out_of_plane_moment_nm;
+  ps.iterative_solver = env.iterative_solver;
+  ps.solver_summary = env.solver_summary;
+}
+
 }  // namespace
 
 SupportedPart::SupportedPart(const Part& part, const fem::StaticSolverOptions& solver, const Log& log)
@@ -196,37 +224,14 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
     body.write_envelope(post::layout::kContactPressure, "Pa", max_pressure, max_step, post::layout::kEnvelopeMax, step_times);
   }
 
-  ps.peak_von_mises_pa = env.peak_von_mises_pa;
-  ps.peak_von_mises_time_s = motion[size_t(env.peak_von_mises_step)].t;
-  ps.peak_von_mises_node = long(env.peak_von_mises_node);
-  ps.peak_von_mises_at_m = supported.mesh.nodes.row(env.peak_von_mises_node).transpose();
-  ps.peak_displacement_m = env.peak_displacement_m;
-  ps.peak_displacement_time_s = motion[size_t(env.peak_displacement_step)].t;
-  ps.factorize_seconds = env.solver.factorize_seconds;
-  ps.solve_seconds = env.solve_seconds;
-  ps.assembly_seconds = env.assembly_seconds;
-  ps.recovery_seconds = env.recovery_seconds;
-  ps.analyze_seconds = env.solver.analyze_seconds;
-  ps.factor_nonzeros = env.solver.factor_nonzeros;
-  ps.factor_bytes = env.solver.factor_bytes;
-  ps.factorization_flops = env.solver.factorization_flops;
-  ps.right_hand_sides = env.solved_right_hand_sides;
-  ps.output_times = long(motion.size());
-  ps.superposed = env.patterns.has_value();
+  std::vector<double> times;
+  for (const auto& frame : motion) times.push_back(frame.t);
+  summarise_envelope(env, supported.mesh, times, ps);
   if (env.patterns && history) {
     history->pattern_stress_pa = env.patterns->stress_pa;
     history->coefficients = env.patterns->coefficients.leftCols(Eigen::Index(motion.size()));
   }
-  if (env.patterns) {
-    std::vector<double> times;
-    for (const auto& frame : motion) times.push_back(frame.t);
-    write_load_patterns(body, *env.patterns, times);
-  }
-  ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
-  ps.worst_support_reaction = env.worst_support_reaction;
-  ps.max_out_of_plane_moment_nm = env.max_out_of_plane_moment_nm;
-  ps.iterative_solver = env.iterative_solver;
-  ps.solver_summary = env.solver_summary;
+  if (env.patterns) write_load_patterns(body, *env.patterns, times);
   if (contact) {
     summarise_contact(*contact, link_loads, motion, part, writer, ps);
     constexpr double kDegree = std::numbers::pi / 180.0;
@@ -324,27 +329,7 @@ PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech
   ps.body = name;
   ps.nodes = supported.mesh.node_count();
   ps.dofs = 3 * ps.nodes;
-  ps.peak_von_mises_pa = env.peak_von_mises_pa;
-  ps.peak_von_mises_time_s = times[std::size_t(env.peak_von_mises_step)];
-  ps.peak_von_mises_node = long(env.peak_von_mises_node);
-  ps.peak_von_mises_at_m = supported.mesh.nodes.row(env.peak_von_mises_node).transpose();
-  ps.peak_displacement_m = env.peak_displacement_m;
-  ps.peak_displacement_time_s = times[std::size_t(env.peak_displacement_step)];
-  ps.factorize_seconds = env.solver.factorize_seconds;
-  ps.solve_seconds = env.solve_seconds;
-  ps.assembly_seconds = env.assembly_seconds;
-  ps.recovery_seconds = env.recovery_seconds;
-  ps.analyze_seconds = env.solver.analyze_seconds;
-  ps.factor_nonzeros = env.solver.factor_nonzeros;
-  ps.factor_bytes = env.solver.factor_bytes;
-  ps.factorization_flops = env.solver.factorization_flops;
-  ps.right_hand_sides = env.solved_right_hand_sides;
-  ps.output_times = long(motion.size());
-  ps.superposed = true;
-  ps.worst_equilibrium_residual = env.worst_equilibrium_residual;
-  ps.worst_support_reaction = env.worst_support_reaction;
-  ps.iterative_solver = env.iterative_solver;
-  ps.solver_summary = env.solver_summary;
+  summarise_envelope(env, supported.mesh, times, ps);
   if (history) {
     history->source = StressHistorySource::SpatialFreeBodyPart;
     history->pattern_stress_pa = env.patterns->stress_pa;
