@@ -19,6 +19,8 @@
 //     output time is the combination of the pattern fields with the frame's
 //     coefficients c(t) (a matrix product over blocks of times), so the cost
 //     of more output times is a GEMM, not a solve and a stress recovery.
+//     The envelope takes the products chunk of nodes by chunk, in cache;
+//     full fields are formed only at the times the callback gets.
 //     Patterns whose coefficient is exactly zero at every time are dropped.
 //   * step by step (LoadPath::StepByStep; forced for a link with a cosine
 //     bearing pressure, which is not linear in the force's direction): each
