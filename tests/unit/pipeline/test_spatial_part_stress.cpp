@@ -45,7 +45,11 @@ const SphericalRun& spherical_run() {
     for (int k = 0; k <= 10; ++k) times.push_back(line.duration() * k / 10.0);
     times.push_back(line.duration() + 0.25);
     r.motion = mech::spatial::run_kinematics(mech::spatial::System(r.model), times);
-    r.file = test::fresh_dir("spatial_part_stress") / "spherical.h5";
+    // The folder is named after the test that asks first: ctest runs the
+    // tests of this file in parallel processes.
+    r.file = test::fresh_dir(std::string("spatial_part_stress_") +
+                             ::testing::UnitTest::GetInstance()->current_test_info()->name()) /
+             "spherical.h5";
     post::ResultsWriter writer(r.file, {});
     for (const SpatialPart& p : r.parts.parts)
       r.summaries.push_back(analyse_spatial_part_over_motion(p, r.model, r.motion.frames, writer, {}, Log::quiet()));
