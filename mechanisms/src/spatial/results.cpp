@@ -57,12 +57,19 @@ IndexOneSolution solve_index_one(const System& system, const VectorXd& q, const 
   s.v_dot = scaled.to_velocity(x);
   s.redundant_rows = m - scaled.rank;
   // Redundant rows whose right-hand sides disagree leave Pi v' != gamma.
-  const double residual = m > 0 ? (scaled.pi_scaled * x - gamma).cwiseAbs().maxCoeff() : 0.0;
+  const VectorXd row_residual = m > 0 ? VectorXd((scaled.pi_scaled * x - gamma).cwiseAbs()) : VectorXd();
+  const double residual = m > 0 ? row_residual.maxCoeff() : 0.0;
   const double scale = std::max(1.0, m > 0 ? gamma.cwiseAbs().maxCoeff() + (scaled.pi_scaled * f).cwiseAbs().maxCoeff() : 0.0);
-  require(residual <= 1e-6 * scale,
-          "spatial model '{}' at t = {} s: the acceleration equations are inconsistent (residual {:.3e}): redundant "
-          "constraints that disagree, or a singular position",
-          system.model().name, t, residual);
+  if (!(residual <= 1e-6 * scale)) {
+    // The joints and drives whose rows are left unsatisfied: those that disagree.
+    std::string named;
+    for (const ConstraintBlock& blk : system.blocks())
+      if (row_residual.segment(blk.first_row, blk.rows).maxCoeff() > 1e-6 * scale)
+        named += fmt::format("{}'{}'", named.empty() ? "" : ", ", blk.name);
+    fail("spatial model '{}' at t = {} s: the acceleration equations are inconsistent (residual {:.3e}) in {}: "
+         "redundant constraints that disagree, or a singular position",
+         system.model().name, t, residual, named);
+  }
   return s;
 }
 

@@ -396,6 +396,57 @@ TEST(SpatialModelErrors, MechanismThatCannotBeAssembledNamesTheJoints) {
   }
 }
 
+// A law that holds s = 0 at rest but asks for the acceleration `a`: not a
+// motion, the smallest way to make two drives on one coordinate disagree.
+class AccelerationOnly final : public MotionLaw {
+ public:
+  explicit AccelerationOnly(double a) : a_(a) {}
+  MotionState at(double) const override { return {0.0, 0.0, a_}; }
+  double stroke() const override { return 0.0; }
+  double duration() const override { return 1.0; }
+  std::string describe() const override { return "acceleration only"; }
+
+ private:
+  double a_;
+};
+
+TEST(SpatialModelErrors, RedundantRowsThatDisagreeAreNamed) {
+  // One revolute turned by two drives on its angle: the rows are the same
+  // (redundant) and hold in position and velocity, but ask for different
+  // accelerations.
+  Model m;
+  m.name = "two drives";
+  Body ground;
+  ground.name = "ground";
+  ground.fixed = true;
+  Body crank;
+  crank.name = "crank";
+  crank.mass_kg = 1.0;
+  crank.inertia_kgm2 = Eigen::Vector3d(0.01, 0.02, 0.02).asDiagonal();
+  crank.com_body = {0.1, 0.0, 0.0};
+  m.bodies = {ground, crank};
+  m.joints = {make_joint("pivot", JointType::Revolute, "ground", "origin", "crank", "origin")};
+  for (const auto& [name, a] : {std::pair{"slow", 1.0}, std::pair{"fast", 2.0}}) {
+    MotionDrive d;
+    d.name = name;
+    d.joint = "pivot";
+    d.law = std::make_shared<AccelerationOnly>(a);
+    m.motion_drives.push_back(d);
+  }
+  const System system(m);
+  const Eigen::VectorXd q = assemble(system, system.initial_positions(), 0.0);
+  try {
+    make_frame(system, 0.0, q, Eigen::VectorXd::Zero(system.n_velocities()));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("inconsistent"), std::string::npos) << what;
+    EXPECT_NE(what.find("'slow'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'fast'"), std::string::npos) << what;
+    EXPECT_EQ(what.find("'pivot'"), std::string::npos) << what;
+  }
+}
+
 TEST(SpatialModelErrors, InertiaNotPositiveDefinite) {
   Model m = two_body_model(JointType::Revolute);
   m.bodies[2].inertia_kgm2 = Eigen::Vector3d(0.1, 0.0, 0.1).asDiagonal();
