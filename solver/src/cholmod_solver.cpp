@@ -10,6 +10,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/process_memory.hpp"
 #include "kinetofem/solver/blas_threads.hpp"
+#include "kinetofem/solver/dense_product.hpp"
 
 namespace kinetofem::fem {
 
@@ -18,14 +19,8 @@ namespace {
 // The share of the memory left to the process that a factor may take by default.
 constexpr double kFactorShareOfMemory = 0.8;
 
-// OpenBLAS maps a work buffer per thread when a thread first runs a level-3
-// kernel (64 MiB in the x86-64 builds; its BUFFER_SIZE) and, when the mapping
-// is refused, retries forever: the factorization would hang instead of
-// failing. That memory is kept out of the factor's share.
-constexpr double kBlasBufferBytesPerThread = double(std::size_t(64) << 20);
-
-double blas_buffers_bytes() { return kBlasBufferBytesPerThread * std::max(1, BlasThreadLimit::threads()); }
-
+// The BLAS threads' work buffers (dense_product.hpp: refused, they hang the
+// factorization) are kept out of the factor's share.
 // The memory a factor may take by default: a share of what is left after the BLAS buffers.
 double factor_share_bytes(const MemoryBudget& budget) {
   return kFactorShareOfMemory * std::max(0.0, budget.bytes - blas_buffers_bytes());
