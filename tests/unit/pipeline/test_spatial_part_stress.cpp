@@ -75,7 +75,8 @@ TEST(AnalyseSpatialPartOverMotion, EveryPartsLoadsAreInEquilibriumAndTheSupportC
   }
   // The three bodies carry the meshes' masses (the walls are sized for the
   // SPEC §5 masses m1/m2/m3: docs/spherical_manipulator_parts.md).
-  for (const auto& [name, mass] : {std::pair{"column", 300.0}, std::pair{"sleeve", 120.0}, std::pair{"arm", 50.0}}) {
+  for (const auto& [part, mass] : {std::pair{"column", 300.0}, std::pair{"sleeve", 120.0}, std::pair{"arm", 50.0}}) {
+    const std::string name = part;  // (clang before 16 cannot capture a structured binding)
     const auto body = std::find_if(r.model.bodies.begin(), r.model.bodies.end(),
                                    [&](const mech::spatial::Body& b) { return b.name == name; });
     ASSERT_NE(body, r.model.bodies.end());
