@@ -29,7 +29,7 @@ using Eigen::Vector3d;
 // Both sides are exact kinetostatics of the same motion: round-off (1e-9 of
 // the largest value of each kind).
 constexpr double kRoundOff = 1e-9;
-// Issue 28: constraint drift below 1e-8 of the arm length.
+// Constraint drift below 1e-8 of the arm length (the spatial core's stabilisation target, docs/multibody.md).
 constexpr double kDrift = 1e-8;
 constexpr double kPayload_kg = 20.0;
 
