@@ -2,7 +2,7 @@
 // centre-of-mass coordinates and Euler parameters with multipliers) against an
 // independent formulation: the same systems in minimal coordinates, the angles of a
 // serial chain of revolute joints, integrated as an ODE with SUNDIALS CVODES
-// (docs/multibody.md, "Minimal coordinates of a serial chain"). A spherical joint is
+// (docs/multibody.md, "CVODES cross-check on minimal coordinates"). A spherical joint is
 // three revolutes about x, y, z (Cardan angles), a universal joint two (x, y), with
 // massless links between them; the coordinates are free of singularity while the
 // middle angle of each Cardan triple stays away from +-90 deg, which every run checks.
