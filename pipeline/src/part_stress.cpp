@@ -279,28 +279,7 @@ PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech
   require(options.callback_steps.empty() || options.callback_steps.size() == motion.size(),
           "{}: the field output mask has {} entries for {} output times", part.label, options.callback_steps.size(),
           motion.size());
-  // Held by a 3-2-1 support on nodes where no load enters (a support node
-  // under a coupling would take part of the load into a reaction that must
-  // vanish; any other node holds only the rigid motion).
-  fem::FeModel supported = part.model;
-  {
-    std::vector<char> loaded(std::size_t(supported.mesh.node_count()), 0);
-    auto mark = [&](const std::string& face_set) {
-      for (const fem::Index n : fem::nodes_of_faces(supported.mesh.face_set(face_set))) loaded[std::size_t(n)] = 1;
-    };
-    const loads::SpatialLinkDefinition& a = part.attachments;
-    for (const auto* list : {&a.joints, &a.point_masses, &a.point_forces})
-      for (const loads::SpatialAttachment& item : *list) mark(item.face_set);
-    // A slide's attachment names the guide's lands and the slider's face;
-    // this part has one side of them.
-    for (const loads::SpatialSlideAttachment& slide : a.slides)
-      for (const std::string* face_set : {&slide.front_face_set, &slide.rear_face_set, &slide.stations.face_set})
-        if (supported.mesh.face_sets.count(*face_set) != 0) mark(*face_set);
-    std::vector<fem::Index> candidates;
-    for (fem::Index i = 0; i < supported.mesh.node_count(); ++i)
-      if (!loaded[std::size_t(i)]) candidates.push_back(i);
-    supported.supports = fem::three_two_one_support(supported.mesh, candidates);
-  }
+  const fem::FeModel supported = structure::spatial_supported_model(part);
   log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", name);
   fem::LinearStaticAnalysis analysis(supported, log, options.solver);
   loads::SpatialLinkDefinition definition = part.attachments;

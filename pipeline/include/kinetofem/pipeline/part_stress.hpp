@@ -31,6 +31,7 @@
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress_history.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
+#include "kinetofem/structure/spatial_part.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -107,13 +108,8 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
                                      const Log& log, const SupportedPart* factorized = nullptr,
                                      PartStressHistory* history = nullptr);
 
-// A part of a spatial mechanism: its mesh in its body's frame of the spatial
-// model (no supports), material, and where each load enters it.
-struct SpatialPart {
-  std::string label;                        // for messages: "part 'arm'"
-  loads::SpatialLinkDefinition attachments; // its `model` is set by the stage
-  fem::FeModel model;
-};
+// A part of a spatial mechanism (structure/spatial_part.hpp).
+using structure::SpatialPart;
 
 // The same stage for a part of a spatial mechanism (loads::SpatialLinkLoads:
 // the full 3D joint and drive reactions, the inertia of a body turning about
