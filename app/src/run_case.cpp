@@ -13,6 +13,7 @@
 #include "kinetofem/app/linkage_job.hpp"
 #include "kinetofem/app/mechanism_cases.hpp"
 #include "kinetofem/app/manipulator_job.hpp"
+#include "kinetofem/app/spatial_linkage_job.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/core/log.hpp"
 #include "kinetofem/core/units.hpp"
@@ -194,6 +195,10 @@ const std::vector<CaseType>& case_types() {
        &q_manipulator_schema, &run_type<run_q_manipulator>},
       {"spherical_manipulator", "SPEC §5 spherical 3-DoF manipulator: straight-line motion, inverse dynamics, forward check",
        &spherical_manipulator_schema, &run_type<run_spherical_manipulator>},
+      {"spatial_linkage",
+       "any spatial linkage of rigid bodies (joint axes in any direction): prescribed motion or IDAS dynamics, every "
+       "joint's reaction, drive efforts, energy checks, the moving skeleton",
+       &spatial_linkage_schema, &run_type<run_spatial_linkage>},
       {"gripper_study", "SPEC §6 crank-slider gripper: U_V over phi, operating ranges, widest design",
        &gripper_study_schema, &run_type<run_gripper_study>},
   };
