@@ -164,6 +164,9 @@ double integrate(const std::vector<double>& t, const std::vector<double>& f) {
   return sum;
 }
 
+// The default of a Vector3 key of the schema (SI).
+Eigen::Vector3d spec_default_vector(const std::string& path);
+
 }  // namespace
 
 const std::vector<KeySpec>& spatial_linkage_schema() {
@@ -249,8 +252,7 @@ const std::vector<KeySpec>& spatial_linkage_schema() {
                  .type = Type::Vector3,
                  .unit = "mm",
                  .to_si = kMm,
-                 .default_number = 0,
-                 .doc = "its centre [x, y, z] in the body frame"});
+                 .doc = "its centre [x, y, z] in the body frame; default: the body's origin"});
     s.push_back(
         {.path = "point_mass[].at_point", .type = Type::String, .doc = "a named point of the body instead of at_mm"});
     s.push_back({.path = "point_mass[].inertia_kgm2",
@@ -421,6 +423,17 @@ const std::vector<KeySpec>& spatial_linkage_schema() {
   return schema;
 }
 
+namespace {
+
+Eigen::Vector3d spec_default_vector(const std::string& path) {
+  for (const KeySpec& k : spatial_linkage_schema())
+    if (k.path == path && k.default_vector)
+      return Eigen::Vector3d((*k.default_vector)[0], (*k.default_vector)[1], (*k.default_vector)[2]) * k.to_si;
+  fail("spatial_linkage schema: key '{}' has no default vector", path);
+}
+
+}  // namespace
+
 sp::Model read_spatial_linkage_model(const CaseFile& c) {
   const Reader r(c);
   sp::Model m;
@@ -471,7 +484,7 @@ sp::Model read_spatial_linkage_model(const CaseFile& c) {
     sp::PointMass pm;
     pm.name = c.text_value("point_mass[].name", k);
     pm.mass_kg = c.number("point_mass[].mass_kg", k);
-    pm.position_body = c.vector3("point_mass[].at_mm", k);
+    if (c.has("point_mass[].at_mm", k)) pm.position_body = c.vector3("point_mass[].at_mm", k);
     if (c.has("point_mass[].at_point", k)) {
       require(!c.has("point_mass[].at_mm", k), "{}: give at_mm or at_point, not both",
               c.where("point_mass[].at_point", k));
@@ -504,9 +517,11 @@ sp::Model read_spatial_linkage_model(const CaseFile& c) {
     j.point_i = r.point(m.bodies[bi], "joint[].point_i", k);
     j.point_j = r.point(m.bodies[bj], "joint[].point_j", k);
     const bool axis = uses_axis(j.type);
-    for (const char* key : {"axis_i", "axis_j"})
-      require(axis || !c.has(std::string("joint[].") + key, k), "{}: a {} joint has no axis",
-              c.where(std::string("joint[].") + key, k), type);
+    // (axis_i at its default, as the template writes it, says nothing)
+    const bool axis_i_given =
+        c.has("joint[].axis_i", k) && c.vector3("joint[].axis_i", k) != spec_default_vector("joint[].axis_i");
+    require(axis || !axis_i_given, "{}: a {} joint has no axis", c.where("joint[].axis_i", k), type);
+    require(axis || !c.has("joint[].axis_j", k), "{}: a {} joint has no axis", c.where("joint[].axis_j", k), type);
     require(facts.holds_rotation || !c.has("joint[].rotation_deg", k),
             "{}: only for prismatic and fixed joints (this one is {})", c.where("joint[].rotation_deg", k), type);
     if (axis) {

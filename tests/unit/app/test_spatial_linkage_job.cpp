@@ -143,6 +143,24 @@ TEST(SpatialLinkageCase, BadInputsNameTheirKey) {
             std::string::npos);
 }
 
+TEST(SpatialLinkageCase, TemplateValuesSayNothingWhereTheyDoNotApply) {
+  // The template writes axis_i = [0, 0, 1] in every [[joint]]: a spherical
+  // joint copied from it is no error; another axis on it is.
+  std::string ball = pendulum("axis_i = [0.0, 0.0, 1.0]");
+  ball.replace(ball.find("\"revolute\""), 10, "\"spherical\"");
+  EXPECT_EQ(error_of(ball), "(no error)");
+  // A point mass at a named point, with its own inertia added by the core.
+  const sp::Model m = read_spatial_linkage_model(
+      CaseFile::parse(pendulum("axis_i = [0.0, 1.0, 0.0]",
+                               "[[point]]\nbody = \"bar\"\nname = \"tip\"\nat_mm = [100.0, 0.0, 0.0]\n"
+                               "[[point_mass]]\nbody = \"bar\"\nname = \"gripper\"\nmass_kg = 1.0\nat_point = \"tip\"\n"
+                               "inertia_kgm2 = [1e-3, 2e-3, 3e-3]\n"),
+                      "case.toml", spatial_linkage_schema()));
+  ASSERT_EQ(m.bodies[1].point_masses.size(), 1u);
+  EXPECT_NEAR((m.bodies[1].point_masses[0].position_body - Eigen::Vector3d(0.1, 0.0, 0.0)).norm(), 0.0, 1e-15);
+  EXPECT_DOUBLE_EQ(m.bodies[1].point_masses[0].inertia_kgm2(2, 2), 3e-3);
+}
+
 TEST(SpatialLinkageCase, BundledCaseRunsWithItsChecks) {
   RunOptions options;
   options.case_path = kBundledCase;
