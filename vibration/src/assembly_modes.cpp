@@ -14,6 +14,7 @@
 #include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/solver/couplings.hpp"
 #include "kinetofem/structure/rigid_motion.hpp"
+#include "assembly_modes_shared.hpp"
 
 namespace kinetofem::vibration {
 
@@ -34,27 +35,15 @@ using Eigen::VectorXd;
 
 Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Vector3d::UnitZ()).toRotationMatrix(); }
 
-// Mass matrix of a rigid body on (translation, rotation) of its origin, body
-// axes: a point mass m at c moves by t + w x c = [I, -skew(c)] (t, w).
-Matrix6d point_mass_6x6(double m, const Vector3d& c) {
-  Eigen::Matrix<double, 3, 6> L;
-  L << Eigen::Matrix3d::Identity(), -skew(c);
-  return m * L.transpose() * L;
-}
+using detail::CbInterface;
+using detail::InterfaceMap;
+using detail::point_mass_6x6;
 
 }  // namespace
 
 struct AssemblyModes::Impl {
-  // One Craig-Bampton interface of a part per face set: the assembly's
-  // interfaces on the same face set move rigidly with it (a rigid transfer
-  // from its reference point), and a point mass on its mount face is a
-  // 6 x 6 rigid mass on it (at the mass's point).
-  struct CbInterface {
-    std::string name, face_set;
-    Vector3d reference = Vector3d::Zero();  // body frame
-    Eigen::MatrixXd columns;                // 3N x 6
-    Matrix6d mass = Matrix6d::Zero();       // point masses carried here, on its 6 coordinates
-  };
+  // One Craig-Bampton interface of a part per face set (CbInterface,
+  // assembly_modes_shared.hpp).
   struct PartRed {
     std::string body, label;
     int body_index = -1;
@@ -71,15 +60,6 @@ struct AssemblyModes::Impl {
     Index offset = 0;
     Matrix6d mass = Matrix6d::Zero();
   };
-  // Where an interface of the assembly sits in x.
-  struct InterfaceMap {
-    int body_index = -1;
-    int part = -1;        // elastic: its part; -1: rigid
-    Index column = 0;     // first of the 6 coordinates in x it moves with (its coupling's; a rigid body's)
-    Vector3d reference = Vector3d::Zero();  // body frame
-    Vector3d arm = Vector3d::Zero();        // from those coordinates' point to the reference, body frame
-  };
-
   const ElasticAssembly& assembly;
   AssemblyModesOptions options;
   Log log;
@@ -98,9 +78,6 @@ struct AssemblyModes::Impl {
        const AssemblyModesOptions& o, const std::vector<mech::Frame>& poses, const Log& l, PartFactorLender* f);
 
   PartFactorLender* lender = nullptr;  // null: the assembly's factors, alive throughout
-  // Per part, in `parts` order: K, M, Psi and X_0 made once (with the part's
-  // factorization) for both the rule's bound and the final reduction.
-  std::vector<vibration::CraigBamptonReducer> reducers;
 
   fem::LinearStaticAnalysis& borrow(size_t p);
   void give_back(size_t p);
@@ -110,19 +87,14 @@ struct AssemblyModes::Impl {
   void build_matrices();
 
   MatrixXd interface_map(const mech::Frame& frame) const {  // U: 6M x n
-    MatrixXd U = MatrixXd::Zero(6 * Index(map.size()), n);
-    for (size_t k = 0; k < map.size(); ++k) {
-      const InterfaceMap& im = map[k];
-      const Matrix6d Q = rotate6(rot_z(frame.bodies[size_t(im.body_index)].q.z()));
-      U.block<6, 6>(6 * Index(k), im.column) = Q * transfer(im.arm);
-    }
-    return U;
+    std::vector<Eigen::Matrix3d> rotation;
+    for (const mech::BodyFrame& body : frame.bodies) rotation.push_back(rot_z(body.q.z()));
+    return detail::interface_map(map, rotation, n);
   }
 
   // An orthonormal basis (scaled back) of the motions C U x = 0 of a pose
   // (its structure and interface map, built once by the caller).
   MatrixXd admissible(const InterfaceStructure& is, const MatrixXd& U) const {
-    MatrixXd A = is.constraints * U;
     // Rotations as length_scale x angle, so that rank decisions compare like with like.
     VectorXd scale = VectorXd::Ones(n);
     for (const auto& p : parts)
@@ -130,13 +102,7 @@ struct AssemblyModes::Impl {
         if (b % 6 >= 3) scale(p.offset + b) = 1.0 / length_scale;
     for (const auto& r : rigid)
       for (int c = 3; c < 6; ++c) scale(r.offset + c) = 1.0 / length_scale;
-    A = A * scale.asDiagonal();
-    if (A.rows() == 0) return scale.asDiagonal();
-    Eigen::ColPivHouseholderQR<MatrixXd> qr(A.transpose());
-    qr.setThreshold(1e-10);
-    const Index rank = qr.rank();
-    const MatrixXd Q = qr.householderQ();
-    return scale.asDiagonal() * Q.rightCols(n - rank);
+    return detail::null_space_basis(is.constraints * U, scale);
   }
 
   PoseModes solve(const mech::Frame& frame, int count) const {
@@ -148,28 +114,7 @@ struct AssemblyModes::Impl {
             frame.t, N.cols(), count);
     MatrixXd Kc = N.transpose() * (K + U.transpose() * is.springs * U) * N;
     MatrixXd Mc = N.transpose() * M * N;
-    // Diagonal scaling to unit modal mass (kg, kg m^2 and modal coordinates mixed).
-    const VectorXd d = Mc.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-    Kc = d.asDiagonal() * Kc * d.asDiagonal();
-    Mc = d.asDiagonal() * Mc * d.asDiagonal();
-    Kc = (0.5 * (Kc + Kc.transpose())).eval();
-    Mc = (0.5 * (Mc + Mc.transpose())).eval();
-    const Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> eig(Kc, Mc);
-    require(eig.info() == Eigen::Success,
-            "vibration at t = {:.6g} s: the reduced mass matrix is not positive definite (a body without mass?)",
-            frame.t);
-    PoseModes out;
-    out.t = frame.t;
-    out.constrained_size = N.cols();
-    out.omega_rad_s.resize(count);
-    out.frequency_hz.resize(count);
-    for (int i = 0; i < count; ++i) {
-      const double w2 = eig.eigenvalues()(i);
-      out.omega_rad_s(i) = w2 > 0 ? std::sqrt(w2) : 0.0;
-      out.frequency_hz(i) = fem::frequency_hz(w2);
-    }
-    out.shapes = N * d.asDiagonal() * eig.eigenvectors().leftCols(count);
-    return out;
+    return detail::modes_on_basis(std::move(Kc), std::move(Mc), N, count, frame.t);
   }
 };
 
@@ -177,12 +122,7 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
                           const mech::MultibodyModel& model, const AssemblyModesOptions& o,
                           const std::vector<mech::Frame>& poses, const Log& l, PartFactorLender* f)
     : assembly(a), options(o), log(l), infos(a.interfaces()), lender(f) {
-  require(options.modes >= 1, "vibration: modes = {}: at least one natural frequency must be wanted", options.modes);
-  require(options.part_mode_cutoff_hz >= 0 && std::isfinite(options.part_mode_cutoff_hz),
-          "vibration: part_mode_cutoff_hz = {} must be positive (or 0: automatic)", options.part_mode_cutoff_hz);
-  require(options.cutoff_factor >= 1 && std::isfinite(options.cutoff_factor),
-          "vibration: cutoff_factor = {} must be at least 1", options.cutoff_factor);
-  require(!poses.empty(), "vibration: no poses to estimate the frequencies of");
+  detail::check_options(options, poses.size());
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
   auto body_index = [&](const std::string& name) {
     for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -211,28 +151,11 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
     // One coupling per face set: a second reference point on the same face
     // moves rigidly with the first (its columns are a rigid transfer of the
     // first's, so they would be dependent boundary coordinates).
-    auto find = [&](const std::string& face_set) {
-      for (size_t i = 0; i < pr.interfaces.size(); ++i)
-        if (pr.interfaces[i].face_set == face_set) return int(i);
-      return -1;
-    };
     Index local = 0;
     for (const InterfaceInfo& info : infos) {
       if (info.body != pr.body) continue;
-      if (const int i = find(info.face_set); i < 0) {
-        pr.interfaces.push_back({info.kind + "." + info.name, info.face_set, info.reference_body_m,
-                                 G.middleCols(6 * local, 6), Matrix6d::Zero()});
-      } else {
-        // The coupling's motion at another reference point is the rigid
-        // transfer of its motion at the first: G_k = G_first transfer(arm)^T.
-        const CbInterface& first = pr.interfaces[size_t(i)];
-        const MatrixXd moved = first.columns * transfer(info.reference_body_m - first.reference).transpose();
-        const double error = (moved - G.middleCols(6 * local, 6)).cwiseAbs().maxCoeff();
-        require(error <= 1e-9 * G.middleCols(6 * local, 6).cwiseAbs().maxCoeff(),
-                "vibration: {}: the {} '{}' on face set '{}' does not move rigidly with '{}' on the same face "
-                "(columns differ by {:.2e})",
-                pr.label, info.kind, info.name, info.face_set, first.name, error);
-      }
+      detail::add_face_interface(pr.interfaces, pr.label, info.kind + "." + info.name, info.face_set,
+                                 info.reference_body_m, G.middleCols(6 * local, 6));
       ++local;
     }
     require(6 * local == G.cols(), "vibration: {}: {} interface columns for {} interfaces", pr.label, G.cols(), local);
@@ -244,15 +167,9 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
               pm.point_mass);
       const double z = fem::DistributingCoupling(*pr.mesh, pm.face_set).centroid().z();
       const Vector3d reference(it->position_body.x(), it->position_body.y(), z);
-      int i = find(pm.face_set);
-      if (i < 0) {
-        pr.interfaces.push_back({"mass." + it->name, pm.face_set, reference,
-                                 vibration::coupling_interface(*pr.mesh, pm.face_set, reference, it->name).columns,
-                                 Matrix6d::Zero()});
-        i = int(pr.interfaces.size()) - 1;
-      }
-      CbInterface& carrier = pr.interfaces[size_t(i)];
-      carrier.mass += point_mass_6x6(it->mass_kg, reference - carrier.reference);
+      // No rotary inertia: the planar model has none.
+      detail::carry_point_mass(pr.interfaces, *pr.mesh, pm.face_set, reference, it->name, it->mass_kg,
+                               Eigen::Matrix3d::Zero());
     }
     parts.push_back(std::move(pr));
   }
@@ -278,50 +195,26 @@ AssemblyModes::Impl::Impl(const ElasticAssembly& a, const std::vector<structure:
   }
 
   // The part-mode rule.
-  vibration::CraigBamptonOptions cbo;
-  if (options.part_mode_cutoff_hz > 0) {
-    cbo.highest_frequency_of_interest_hz = options.part_mode_cutoff_hz;
-    cbo.cutoff_factor = 1.0;
-    for (size_t p = 0; p < parts.size(); ++p) {
-      vibration::CraigBamptonReducer reducer = make_reducer(p);
-      borrow(p);
-      take(p, reducer.reduce(part_options(p, cbo), &log));
-      give_back(p);
-    }
-  } else {
-    // K and M of every part in order (no factor: a massless part is named
-    // in order); the set-up's solves from the last part to the first (the
-    // set-up's order backwards: a lender one at a time may still hold the
-    // last part's factor), then the fixed-interface modes from the first,
-    // whose factor serves both without being lent twice.
-    reducers.clear();
-    for (size_t p = 0; p < parts.size(); ++p) reducers.push_back(make_reducer(p));
-    cbo.fixed_interface_modes = false;  // the bound: the set-up's solves only
-    for (size_t p = parts.size(); p-- > 0;) {
-      borrow(p);
-      take(p, reducers[p].reduce(part_options(p, cbo), &log));
-      if (p > 0) give_back(p);
-    }
+  detail::PartRuleSteps steps;
+  steps.parts = parts.size();
+  steps.make_reducer = [this](size_t p) { return make_reducer(p); };
+  steps.borrow = [this](size_t p) { borrow(p); };
+  steps.give_back = [this](size_t p) { give_back(p); };
+  steps.part_options = [this](size_t p, const vibration::CraigBamptonOptions& given) {
+    return part_options(p, given);
+  };
+  steps.take = [this](size_t p, vibration::CraigBamptonModel cb) { take(p, std::move(cb)); };
+  steps.static_fmax_hz = [&] {
     build_matrices();
+    double fmax = 0.0;
     for (const mech::Frame& frame : poses)
-      fmax_estimate = std::max(fmax_estimate, solve(frame, options.modes).frequency_hz(options.modes - 1));
-    require(fmax_estimate > 0, "vibration: the static reduction gives no positive frequency (a mechanism?)");
-    log.info("vibration: part-mode rule: f_max <= {:.5g} Hz (static reduction over {} poses, an upper bound); "
-             "cutoff = {:.3g} x f_max",
-             fmax_estimate, poses.size(), options.cutoff_factor);
-    cbo = {};
-    cbo.highest_frequency_of_interest_hz = fmax_estimate;
-    cbo.cutoff_factor = options.cutoff_factor;
-    for (size_t p = 0; p < parts.size(); ++p) {
-      if (p > 0) borrow(p);
-      take(p, reducers[p].reduce(part_options(p, cbo), &log));
-      give_back(p);
-      const vibration::CraigBamptonReducer done = std::move(reducers[p]);  // its K, M, Z_G, X_0 go
-    }
-    reducers.clear();
-  }
+      fmax = std::max(fmax, solve(frame, options.modes).frequency_hz(options.modes - 1));
+    return fmax;
+  };
+  const detail::PartRuleResult rule = detail::reduce_parts_by_rule(options, poses.size(), steps, log);
+  fmax_estimate = rule.fmax_estimate_hz;
   build_matrices();
-  cutoff = cbo.cutoff_factor * cbo.highest_frequency_of_interest_hz;
+  cutoff = rule.cutoff_hz;
 }
 
 fem::LinearStaticAnalysis& AssemblyModes::Impl::borrow(size_t p) {
@@ -495,18 +388,7 @@ double AssemblyModes::cutoff_hz() const { return impl_->cutoff; }
 double AssemblyModes::estimated_fmax_hz() const { return impl_->fmax_estimate; }
 
 std::string AssemblyModes::check_rule(double highest_frequency_seen_hz) const {
-  const Impl& im = *impl_;
-  std::string text = fmt::format(
-      "part-mode rule: every fixed-interface mode up to {:.5g} Hz kept ({}), plus the residual vectors; the highest "
-      "assembly frequency wanted over the poses solved is {:.5g} Hz, so the cutoff is {:.2f} x it (required {:.2f}): "
-      "{}",
-      im.cutoff, im.options.part_mode_cutoff_hz > 0 ? "given" : "automatic", highest_frequency_seen_hz,
-      im.cutoff / highest_frequency_seen_hz, im.options.part_mode_cutoff_hz > 0 ? 1.0 : im.options.cutoff_factor,
-      im.cutoff >= (im.options.part_mode_cutoff_hz > 0 ? 1.0 : im.options.cutoff_factor) * highest_frequency_seen_hz *
-                       (1 - 1e-12)
-          ? "holds"
-          : "FAILS (raise part_mode_cutoff_hz)");
-  return text;
+  return detail::format_rule(impl_->options, impl_->cutoff, highest_frequency_seen_hz);
 }
 
 }  // namespace kinetofem::vibration
