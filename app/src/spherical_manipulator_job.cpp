@@ -29,6 +29,8 @@
 #include "kinetofem/mechanisms/spherical_manipulator.hpp"
 #include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/spherical_manipulator_parts.hpp"
+#include "kinetofem/pipeline/spatial_assembly_over_motion.hpp"
+#include "kinetofem/pipeline/spatial_part_factors.hpp"
 #include "kinetofem/pipeline/spatial_histories.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
@@ -62,6 +64,7 @@ const std::vector<KeySpec>& spherical_manipulator_schema() {
       {.path = "parts.enabled", .type = Type::Boolean, .default_number = 0, .doc = "mesh the column, sleeve and arm (SPEC §5 sizing, docs/spherical_manipulator_parts.md) and compute their stress over the motion from the spatial multibody loads"},
       {.path = "parts.arm_diameter_ratio", .type = Type::Number, .default_number = rules.arm_diameter_ratio, .min = 0.3, .max = 0.85, .doc = "the arm's outer diameter D3 over the sleeve's d2 (a design choice the SPEC leaves open)"},
       {.path = "parts.guide_length_ratio", .type = Type::Number, .default_number = rules.guide_length_ratio, .min = 0.25, .max = 2.0, .doc = "each guide land's length l_g over the arm's diameter D3"},
+      {.path = "parts.assembly", .type = Type::Boolean, .default_number = 1, .doc = "with the parts: the column, sleeve and arm as one elastic structure held by the ground at every output time (the spatial elastic assembly): M's positioning error over the motion, its compliance and each part's share"},
       {.path = "parts.pin_diameter_ratio", .type = Type::Number, .default_number = rules.pin_diameter_ratio, .min = 0.1, .max = 0.5, .doc = "the tilt pin's (and trunnion journals') diameter over the sleeve's d2"},
     });
     const std::vector<KeySpec> material = material_keys(), mesh = part_mesh_keys(), stress = motion_solver_keys(),
@@ -214,13 +217,36 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
   w.write_history("pair10.reaction_moment", "N*m", m10, xyz);
   std::vector<pipeline::PartSummary> part_summaries;
   std::vector<pipeline::PartFatigue> part_fatigue;
+  std::optional<pipeline::SpatialAssemblySummary> assembly;
+  std::optional<pipeline::SpatialPartFactors> factors;
+  if (parts) {
+    try {
+      factors.emplace(parts->parts, read_solver_options(c), log);
+    } catch (const Error& e) {
+      fail("{}: {}", c.path().string(), e.what());
+    }
+  }
+  if (parts && c.boolean("parts.assembly")) {
+    structure::SpatialAssemblyOptions assembly_options;
+    assembly_options.points = {{std::string(mech::spatial::spherical_names::point_m),
+                                std::string(mech::spatial::spherical_names::arm),
+                                std::string(mech::spatial::spherical_names::point_m), "gripper_mount"}};
+    assembly_options.solver = read_solver_options(c);
+    try {
+      assembly = pipeline::analyse_spatial_assembly_over_motion(parts->parts, spatial_model, spatial.frames, w,
+                                                                assembly_options, {}, log, factors->lent());
+    } catch (const Error& e) {
+      fail("{}: {}", c.path().string(), e.what());
+    }
+  }
   if (parts) {
     const loads::LinkStressOptions stress = read_stress_options(c);
-    for (const pipeline::SpatialPart& p : parts->parts) {
+    for (std::size_t k = 0; k < parts->parts.size(); ++k) {
+      const pipeline::SpatialPart& p = parts->parts[k];
       pipeline::PartStressHistory history;
       try {
-        part_summaries.push_back(pipeline::analyse_spatial_part_over_motion(p, spatial_model, spatial.frames, w, stress,
-                                                                            log, fatigue ? &history : nullptr));
+        part_summaries.push_back(pipeline::analyse_spatial_part_over_motion(
+            p, spatial_model, spatial.frames, w, stress, log, fatigue ? &history : nullptr, &factors->of(k)));
         if (fatigue) {
           part_fatigue.push_back(pipeline::assess_part_fatigue(as_part(p), history, *fatigue, log));
           pipeline::write_part_fatigue(w.body(p.attachments.body), part_fatigue.back());
@@ -279,6 +305,21 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
       summary.values.push_back({"peak_von_mises_" + ps.body + "_mpa", ps.peak_von_mises_pa / units::kMpa});
       summary.max_von_mises_pa = std::max(summary.max_von_mises_pa.value_or(0.0), ps.peak_von_mises_pa);
       summary.max_displacement_m = std::max(summary.max_displacement_m.value_or(0.0), ps.peak_displacement_m);
+    }
+  }
+  if (assembly) {
+    for (const pipeline::PointSummary& ps : assembly->points) {
+      std::printf("  elastic assembly (column, sleeve and arm as one structure): M's positioning error up to %.4f mm "
+                  "at t = %.4f s (x %.4f, y %.4f, z %.4f mm); compliance %.3g-%.3g mm/kN\n",
+                  ps.max_displacement_m / kMm, ps.max_displacement_time_s, ps.displacement_at_max_m.x() / kMm,
+                  ps.displacement_at_max_m.y() / kMm, ps.displacement_at_max_m.z() / kMm,
+                  ps.min_compliance_m_per_n / kMm * 1e3, ps.max_compliance_m_per_n / kMm * 1e3);
+      std::string split;
+      for (const structure::PointContribution& share : ps.contributions_at_max)
+        split += fmt::format("{}{} {:.4f} mm", split.empty() ? "" : ", ", share.name.substr(share.name.find('.') + 1),
+                             share.displacement_m.dot(ps.displacement_at_max_m.normalized()) / kMm);
+      std::printf("    its split along the error there: %s\n", split.c_str());
+      summary.values.push_back({"M_error_mm", ps.max_displacement_m / kMm});
     }
   }
   std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());

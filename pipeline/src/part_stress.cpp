@@ -273,15 +273,22 @@ PartSummary analyse_part_over_motion(const Part& part, const mech::MultibodyMode
 PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech::spatial::Model& model,
                                              const std::vector<mech::spatial::Frame>& motion,
                                              post::ResultsWriter& writer, const loads::LinkStressOptions& options,
-                                             const Log& log, PartStressHistory* history) {
+                                             const Log& log, PartStressHistory* history,
+                                             fem::LinearStaticAnalysis* factorized) {
   const std::string& name = part.attachments.body;
   require(!motion.empty(), "{}: no output times to analyse", part.label);
   require(options.callback_steps.empty() || options.callback_steps.size() == motion.size(),
           "{}: the field output mask has {} entries for {} output times", part.label, options.callback_steps.size(),
           motion.size());
-  const fem::FeModel supported = structure::spatial_supported_model(part);
-  log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", name);
-  fem::LinearStaticAnalysis analysis(supported, log, options.solver);
+  std::optional<fem::FeModel> own_model;
+  std::optional<fem::LinearStaticAnalysis> own_analysis;
+  if (!factorized) {
+    own_model = structure::spatial_supported_model(part);
+    log.info("part '{}': stiffness assembly and factorization (once for the whole motion)", name);
+    own_analysis.emplace(*own_model, log, options.solver);
+  }
+  fem::LinearStaticAnalysis& analysis = factorized ? *factorized : *own_analysis;
+  const fem::FeModel& supported = analysis.model();
   loads::SpatialLinkDefinition definition = part.attachments;
   definition.model = &supported;
   const loads::SpatialLinkLoads link_loads(definition, model);

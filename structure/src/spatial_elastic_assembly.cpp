@@ -47,8 +47,9 @@ struct SpatialElasticAssembly::Impl {
     std::string body, label;
     int body_index = -1;
     fem::FeModel supported;
-    std::unique_ptr<fem::LinearStaticAnalysis> analysis;
-    loads::SpatialLinkDefinition load_definition;  // point masses and forces only
+    std::unique_ptr<fem::LinearStaticAnalysis> analysis;  // own, during set-up only
+    fem::LinearStaticAnalysis* lent = nullptr;            // or the caller's
+    loads::SpatialLinkDefinition load_definition;         // point masses and forces only
     std::unique_ptr<loads::SpatialLinkLoads> loads;
     std::vector<std::unique_ptr<fem::DistributingCoupling>> couplings;  // per local interface
     std::vector<int> interfaces;                                        // global, local order
@@ -106,7 +107,8 @@ struct SpatialElasticAssembly::Impl {
   std::vector<SpatialPart> given_parts;
   double setup_seconds = 0.0;
 
-  Impl(const std::vector<SpatialPart>& given, const spatial::Model& model, SpatialAssemblyOptions o, const Log& l);
+  Impl(const std::vector<SpatialPart>& given, const spatial::Model& model, SpatialAssemblyOptions o, const Log& l,
+       const std::vector<fem::LinearStaticAnalysis*>& factorized);
 
   bool ground(int body) const { return moving[size_t(body)] < 0; }
   const std::string& body_name(int body) const { return system.model().bodies[size_t(body)].name; }
@@ -167,7 +169,8 @@ int SpatialElasticAssembly::Impl::attach(int body, const std::string& item, cons
 }
 
 SpatialElasticAssembly::Impl::Impl(const std::vector<SpatialPart>& given, const spatial::Model& model,
-                                   SpatialAssemblyOptions o, const Log& l)
+                                   SpatialAssemblyOptions o, const Log& l,
+                                   const std::vector<fem::LinearStaticAnalysis*>& factorized)
     : log(l), options(std::move(o)), system(model), given_parts(given) {
   const spatial::Model& m = system.model();
   const size_t nb = m.bodies.size();
@@ -177,6 +180,8 @@ SpatialElasticAssembly::Impl::Impl(const std::vector<SpatialPart>& given, const 
   for (size_t b = 0; b < nb; ++b)
     if (!m.bodies[b].fixed) moving[b] = moving_count++;
   length_scale = system.characteristic_length() > 0 ? system.characteristic_length() : 1.0;
+  require(factorized.empty() || factorized.size() == given.size(),
+          "spatial elastic assembly: {} factorizations lent for {} parts", factorized.size(), given.size());
   for (const SpatialPart& sp : given) {
     const std::string label = sp.label.empty() ? "part '" + sp.body() + "'" : sp.label;
     int body = -1;
@@ -191,6 +196,13 @@ SpatialElasticAssembly::Impl::Impl(const std::vector<SpatialPart>& given, const 
     part->label = label;
     part->body_index = body;
     part->supported = spatial_supported_model(sp);
+    if (!factorized.empty()) {
+      part->lent = factorized[parts.size()];
+      require(part->lent != nullptr && part->lent->is_factorized() &&
+                  part->lent->model().mesh.node_count() == part->supported.mesh.node_count() &&
+                  part->lent->model().supports.size() == part->supported.supports.size(),
+              "spatial elastic assembly: {}: the factorization lent is not of the part with its 3-2-1 support", label);
+    }
     // The part's own loads; its joints, drives and slides are the structure's.
     part->load_definition = sp.attachments;
     part->load_definition.model = &part->supported;
@@ -315,8 +327,11 @@ void SpatialElasticAssembly::Impl::set_up_part(PartData& part) {
   fem::FeModel& fe = part.supported;
   const fem::Index N = fe.mesh.node_count();
   log.info("spatial elastic assembly: part '{}': {} nodes, {} interfaces", part.body, N, part.interfaces.size());
-  part.analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
-  part.analysis->factorize();
+  if (!part.lent) {
+    part.analysis = std::make_unique<fem::LinearStaticAnalysis>(fe, log, options.solver);
+    part.analysis->factorize();
+  }
+  fem::LinearStaticAnalysis& analysis = part.lent ? *part.lent : *part.analysis;
   const Eigen::Index m = Eigen::Index(part.interfaces.size());
   part.G = Eigen::MatrixXd::Zero(3 * N, 6 * m);
   for (Eigen::Index l = 0; l < m; ++l) {
@@ -329,7 +344,7 @@ void SpatialElasticAssembly::Impl::set_up_part(PartData& part) {
   const Eigen::MatrixXd P = part.loads->pattern_forces();
   Eigen::MatrixXd B(3 * N, part.G.cols() + P.cols());
   B << part.G, P;
-  const Eigen::MatrixXd Z = detail::solve_columns(*part.analysis, B);
+  const Eigen::MatrixXd Z = detail::solve_columns(analysis, B);
   part.ZG = Z.leftCols(part.G.cols());
   part.Zp = Z.rightCols(P.cols());
   part.F = part.G.transpose() * part.ZG;
@@ -348,6 +363,7 @@ void SpatialElasticAssembly::Impl::set_up_part(PartData& part) {
   }
   // The factor is no longer needed: every pose is a product with these columns.
   part.analysis.reset();
+  part.lent = nullptr;
 }
 
 SpatialElasticAssembly::Impl::Pose SpatialElasticAssembly::Impl::pose_of(const spatial::Frame& frame) const {
@@ -553,51 +569,71 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
       if (k % 6 < 3) compliance = std::max(compliance, part->F(k, k));
   const double U = compliance > 0 ? compliance * P : Lr;
 
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 1 + (options.unit_load_split ? 3 * int(points.size()) : 0));
+  // Interfaces that no row ties and no point loads (a slider's stations away
+  // from the lands in this pose) carry no load: lambda = 0; they are left out
+  // of the system (cu, cl, ca, cm: its blocks over the active ones).
+  std::vector<int> slot(size_t(M), -1), active;
   for (int k = 0; k < M; ++k) {
+    bool used = false;
+    for (const Eigen::RowVectorXd& r : rows.C) used = used || r.segment<6>(6 * k).cwiseAbs().maxCoeff() > 0.0;
+    for (const PointData& pd : points) used = used || pd.iface == k;
+    if (used) {
+      slot[size_t(k)] = int(active.size());
+      active.push_back(k);
+    }
+  }
+  const int Ma = int(active.size());
+  const int cu = 0, cl = 6 * Ma, ca = 12 * Ma, cm = 12 * Ma + 6 * B, nn = cm + nc;
+  const int ncols = 1 + (options.unit_load_split ? 3 * int(points.size()) : 0);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nn, nn);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nn, ncols);
+  for (int a = 0; a < Ma; ++a) {
+    const int k = active[size_t(a)];
     const Interface& iface = interfaces[size_t(k)];
     const int mb = moving[size_t(iface.body)];
     // (a) u_k - Q F Q^T lambda - T(arm) alpha = Q d
-    A.block<6, 6>(ou + 6 * k, ou + 6 * k).setIdentity();
-    A.block<6, 6>(ou + 6 * k, oa + 6 * mb) = -transfer(pose.arm[size_t(k)]);
+    A.block<6, 6>(cu + 6 * a, cu + 6 * a).setIdentity();
+    A.block<6, 6>(cu + 6 * a, ca + 6 * mb) = -transfer(pose.arm[size_t(k)]);
     if (iface.part >= 0) {
       const PartData& part = *parts[size_t(iface.part)];
       const Matrix6d Q = rotate6(pose.R[size_t(iface.body)]);
       for (size_t l = 0; l < part.interfaces.size(); ++l)
-        A.block<6, 6>(ou + 6 * k, ol + 6 * part.interfaces[l]) =
-            -Q * part.F.block<6, 6>(6 * iface.local, 6 * Eigen::Index(l)) * Q.transpose();
+        if (const int b = slot[size_t(part.interfaces[l])]; b >= 0)
+          A.block<6, 6>(cu + 6 * a, cl + 6 * b) =
+              -Q * part.F.block<6, 6>(6 * iface.local, 6 * Eigen::Index(l)) * Q.transpose();
       const Vector6d d = part.GtZp.middleRows<6>(6 * iface.local) * coefficients[size_t(iface.part)];
-      rhs.block<6, 1>(ou + 6 * k, 0) = Q * d;
+      rhs.block<6, 1>(cu + 6 * a, 0) = Q * d;
     }
     // (b) lambda_k - (C^T mu)_k = external load at k (the unit loads of the split)
-    A.block<6, 6>(ol + 6 * k, ol + 6 * k).setIdentity();
+    A.block<6, 6>(cl + 6 * a, cl + 6 * a).setIdentity();
     // (c) sum_k T(arm_k)^T lambda_k = -r_b
-    A.block<6, 6>(oa + 6 * mb, ol + 6 * k) = transfer(pose.arm[size_t(k)]).transpose();
+    A.block<6, 6>(ca + 6 * mb, cl + 6 * a) = transfer(pose.arm[size_t(k)]).transpose();
   }
-  for (int b = 0; b < B; ++b) rhs.block<6, 1>(oa + 6 * b, 0) = -resultant[size_t(b)];
-  for (int r = 0; r < nc; ++r) {
-    A.block(ol, om + r, 6 * M, 1) = -rows.C[size_t(r)].transpose();
-    A.block(om + r, ou, 1, 6 * M) = rows.C[size_t(r)];  // (d) C u = 0
-  }
+  for (int b = 0; b < B; ++b) rhs.block<6, 1>(ca + 6 * b, 0) = -resultant[size_t(b)];
+  for (int r = 0; r < nc; ++r)
+    for (int a = 0; a < Ma; ++a) {
+      const auto c = rows.C[size_t(r)].segment<6>(6 * active[size_t(a)]);
+      A.block<6, 1>(cl + 6 * a, cm + r) = -c.transpose();
+      A.block<1, 6>(cm + r, cu + 6 * a) = c;  // (d) C u = 0
+    }
   if (options.unit_load_split)
     for (size_t p = 0; p < points.size(); ++p)
-      for (int c = 0; c < 3; ++c) rhs(ol + 6 * points[p].iface + c, 1 + 3 * Eigen::Index(p) + c) = 1.0;
+      for (int c = 0; c < 3; ++c) rhs(cl + 6 * slot[size_t(points[p].iface)] + c, 1 + 3 * Eigen::Index(p) + c) = 1.0;
 
-  Eigen::VectorXd var(n), eq(n);
-  for (int k = 0; k < 6 * M; ++k) {
+  Eigen::VectorXd var(nn), eq(nn);
+  for (int k = 0; k < 6 * Ma; ++k) {
     const bool rot = k % 6 >= 3;
-    var(ou + k) = eq(ou + k) = rot ? U / Lr : U;
-    var(ol + k) = eq(ol + k) = rot ? P * Lr : P;
+    var(cu + k) = eq(cu + k) = rot ? U / Lr : U;
+    var(cl + k) = eq(cl + k) = rot ? P * Lr : P;
   }
   for (int k = 0; k < 6 * B; ++k) {
     const bool rot = k % 6 >= 3;
-    var(oa + k) = rot ? U / Lr : U;
-    eq(oa + k) = rot ? P * Lr : P;
+    var(ca + k) = rot ? U / Lr : U;
+    eq(ca + k) = rot ? P * Lr : P;
   }
   for (int r = 0; r < nc; ++r) {
-    var(om + r) = rows.rotation[size_t(r)] ? P * Lr : P;
-    eq(om + r) = rows.rotation[size_t(r)] ? U / Lr : U;
+    var(cm + r) = rows.rotation[size_t(r)] ? P * Lr : P;
+    eq(cm + r) = rows.rotation[size_t(r)] ? U / Lr : U;
   }
   Eigen::VectorXd Dr = eq.cwiseInverse(), Dc = var;
   Eigen::MatrixXd As = Dr.asDiagonal() * A * Dc.asDiagonal();
@@ -605,14 +641,14 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
   Eigen::FullPivLU<Eigen::MatrixXd> lu(As);
   lu.setThreshold(options.rank_tolerance);
   const int rank = int(lu.rank());
-  if (rank < n) {
+  if (rank < nn) {
     const Eigen::MatrixXd kernel = lu.kernel();
     std::vector<std::string> free;
     // The bodies whose rigid motion the kernel moves (scaled unknowns).
     for (Eigen::Index c = 0; c < kernel.cols(); ++c) {
       const double largest = kernel.col(c).cwiseAbs().maxCoeff();
       for (size_t b = 0; b < moving.size(); ++b)
-        if (!ground(int(b)) && kernel.col(c).segment<6>(oa + 6 * moving[b]).cwiseAbs().maxCoeff() > 1e-3 * largest &&
+        if (!ground(int(b)) && kernel.col(c).segment<6>(ca + 6 * moving[b]).cwiseAbs().maxCoeff() > 1e-3 * largest &&
             std::find(free.begin(), free.end(), body_name(int(b))) == free.end())
           free.push_back(body_name(int(b)));
     }
@@ -621,16 +657,24 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
     fail(
         "spatial elastic assembly at t = {:.6g} s: the structure is a mechanism (rank {} of {}): nothing holds the "
         "motion of bod{} {} (a joint or drive missing, or a slide without its drive)",
-        frame.t, rank, n, free.size() == 1 ? "y" : "ies", names.empty() ? std::string("?") : names);
+        frame.t, rank, nn, free.size() == 1 ? "y" : "ies", names.empty() ? std::string("?") : names);
   }
   const Eigen::MatrixXd bs = Dr.asDiagonal() * rhs;
   const Eigen::MatrixXd y = lu.solve(bs);
-  const Eigen::MatrixXd X = Dc.asDiagonal() * y;
+  const Eigen::MatrixXd Xa = Dc.asDiagonal() * y;
+  // Back to every interface (the inactive ones: no load, motion not needed).
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, ncols);
+  for (int a = 0; a < Ma; ++a) {
+    X.middleRows<6>(ou + 6 * active[size_t(a)]) = Xa.middleRows<6>(cu + 6 * a);
+    X.middleRows<6>(ol + 6 * active[size_t(a)]) = Xa.middleRows<6>(cl + 6 * a);
+  }
+  X.middleRows(oa, 6 * B) = Xa.middleRows(ca, 6 * B);
+  X.middleRows(om, nc) = Xa.middleRows(cm, nc);
   const Eigen::VectorXd x = X.col(0);
 
   SpatialPoseSolution out;
   out.t = frame.t;
-  out.unknowns = n;
+  out.unknowns = nn;
   out.rank = rank;
   out.relative_residual =
       bs.col(0).norm() > 0 ? (As * y.col(0) - bs.col(0)).norm() / bs.col(0).norm() : (As * y.col(0)).norm();
@@ -652,10 +696,17 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
     const PartData& part = *parts[p];
     const Eigen::Matrix3d& R = pose.R[size_t(part.body_index)];
     const Matrix6d Q = rotate6(R);
-    Eigen::VectorXd lambda_b(6 * part.interfaces.size());
-    for (size_t l = 0; l < part.interfaces.size(); ++l)
-      lambda_b.segment<6>(6 * Eigen::Index(l)) = Q.transpose() * x.segment<6>(ol + 6 * part.interfaces[l]);
-    const Eigen::VectorXd u_body = part.ZG * lambda_b + part.Zp * coefficients[p];
+    // Only the interfaces tied in this pose carry load: their columns alone.
+    Eigen::VectorXd u_body = part.Zp * coefficients[p];
+    Eigen::VectorXd stress;
+    if (options.recover_stress) stress = part.Sp * coefficients[p];
+    for (size_t l = 0; l < part.interfaces.size(); ++l) {
+      const int k = part.interfaces[l];
+      if (slot[size_t(k)] < 0) continue;
+      const Vector6d lambda = Q.transpose() * x.segment<6>(ol + 6 * k);
+      u_body.noalias() += part.ZG.middleCols<6>(6 * Eigen::Index(l)) * lambda;
+      if (options.recover_stress) stress.noalias() += part.SG.middleCols<6>(6 * Eigen::Index(l)) * lambda;
+    }
     const fem::Mesh& mesh = part.supported.mesh;
     const fem::Index N = mesh.node_count();
     const Vector6d alpha = x.segment<6>(oa + 6 * moving[size_t(part.body_index)]);
@@ -673,9 +724,8 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
       }
     }
     if (options.recover_stress) {
-      const Eigen::VectorXd s = part.SG * lambda_b + part.Sp * coefficients[p];
       field.von_mises_pa.resize(N);
-      for (fem::Index i = 0; i < N; ++i) field.von_mises_pa(i) = fem::von_mises(s.segment<6>(6 * i));
+      for (fem::Index i = 0; i < N; ++i) field.von_mises_pa(i) = fem::von_mises(stress.segment<6>(6 * i));
     }
     if (field.max_displacement_m > out.max_displacement_m) {
       out.max_displacement_m = field.max_displacement_m;
@@ -764,8 +814,9 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
 // ---------------------------------------------------------------------------
 
 SpatialElasticAssembly::SpatialElasticAssembly(const std::vector<SpatialPart>& parts, const spatial::Model& model,
-                                               SpatialAssemblyOptions options, const Log& log)
-    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log)) {}
+                                               SpatialAssemblyOptions options, const Log& log,
+                                               const std::vector<fem::LinearStaticAnalysis*>& factorized)
+    : impl_(std::make_unique<Impl>(parts, model, std::move(options), log, factorized)) {}
 SpatialElasticAssembly::~SpatialElasticAssembly() = default;
 SpatialElasticAssembly::SpatialElasticAssembly(SpatialElasticAssembly&&) noexcept = default;
 SpatialElasticAssembly& SpatialElasticAssembly::operator=(SpatialElasticAssembly&&) noexcept = default;

@@ -117,10 +117,14 @@ using structure::SpatialPart;
 // unit-load superposition on one factorization of the part held by a 3-2-1
 // support (on nodes of no attachment's face set); the same series, envelopes,
 // load patterns and history as above, no static study, no pins in contact.
-// `history` (optional): for the fatigue stage.
+// `history` (optional): for the fatigue stage. `factorized` (optional): a
+// factorization of the part with the support of
+// structure::spatial_supported_model, lent (shared with the spatial elastic
+// assembly); else one is made here.
 PartSummary analyse_spatial_part_over_motion(const SpatialPart& part, const mech::spatial::Model& model,
                                              const std::vector<mech::spatial::Frame>& motion,
                                              post::ResultsWriter& writer, const loads::LinkStressOptions& options,
-                                             const Log& log, PartStressHistory* history = nullptr);
+                                             const Log& log, PartStressHistory* history = nullptr,
+                                             fem::LinearStaticAnalysis* factorized = nullptr);
 
 }  // namespace kinetofem::pipeline

@@ -144,8 +144,13 @@ class SpatialElasticAssembly {
   // body or of the ground, two parts of one body, a joint or drive on a part
   // that names no face set for it, a chain joint, a tracked point of no body
   // or on a part without its face set, a missing face set.
+  // `factorized`: empty, or per part (in order) a factorization of the part
+  // with the support of spatial_supported_model, lent by the caller (e.g.
+  // shared with the per-part stress stage: one factorization per part); it
+  // is used during the construction only.
   SpatialElasticAssembly(const std::vector<SpatialPart>& parts, const mech::spatial::Model& model,
-                         SpatialAssemblyOptions options = {}, const Log& log = Log::quiet());
+                         SpatialAssemblyOptions options = {}, const Log& log = Log::quiet(),
+                         const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
   ~SpatialElasticAssembly();
   SpatialElasticAssembly(SpatialElasticAssembly&&) noexcept;
   SpatialElasticAssembly& operator=(SpatialElasticAssembly&&) noexcept;

@@ -1,0 +1,57 @@
+#pragma once
+// Stage "the spatial elastic assembly over the motion": a spatial mechanism
+// as ONE linear-elastic structure held by the ground
+// (structure/spatial_elastic_assembly.hpp) at every output time of its
+// motion, with one factorization per part, its loads superposed from fixed
+// patterns. Quasi-static: the deflection does not feed back into the motion
+// (the frames come from the rigid-body run). docs/elastic_assembly.md,
+// "Spatial mechanisms".
+//
+// Written into the results file (the planar stage's names, docs/results.md):
+//   body assembly.<b> per elastic part, series at the written output times:
+//     position, displacement (m, world axes, from the rigid configuration),
+//     displacement_magnitude (m), von_mises (Pa); envelopes
+//     displacement_magnitude and von_mises (max over the motion);
+//   histories assembly.max_displacement (m), and per tracked point P
+//     assembly.point.<P>.displacement, .displacement_magnitude, .rotation,
+//     .compliance (m/N, xx ... zz), .from.part.<b> (m: the parts' shares,
+//     they add up to the displacement).
+// The writer's mechanism time must be the output times of `motion`.
+#include <string>
+#include <vector>
+
+#include "kinetofem/core/log.hpp"
+#include "kinetofem/mechanisms/spatial/model.hpp"
+#include "kinetofem/mechanisms/spatial/results.hpp"
+#include "kinetofem/pipeline/assembly_over_motion.hpp"  // PointSummary
+#include "kinetofem/postproc/results_writer.hpp"
+#include "kinetofem/structure/spatial_elastic_assembly.hpp"
+
+namespace kinetofem::pipeline {
+
+struct SpatialAssemblySummary {
+  double max_displacement_m = 0.0, max_displacement_time_s = 0.0;
+  std::string max_displacement_body;
+  // Per tracked point; its compliance extremes are the eigenvalues of the
+  // full 3 x 3 compliance (m/N).
+  std::vector<PointSummary> points;
+  struct PartPeak {
+    std::string body;
+    double max_von_mises_pa = 0.0, max_von_mises_time_s = 0.0;
+  };
+  std::vector<PartPeak> parts;
+  double setup_seconds = 0.0, poses_seconds = 0.0;
+  double worst_relative_residual = 0.0;  // of the poses' dense systems
+};
+
+// `field_steps`: the output times whose fields are written (empty: all).
+// `factorized`: the parts' factorizations lent (SpatialPartFactors), or empty.
+// Throws Error naming the part, joint, drive or time
+// (spatial_elastic_assembly.hpp), or a result that is not finite.
+SpatialAssemblySummary analyse_spatial_assembly_over_motion(
+    const std::vector<structure::SpatialPart>& parts, const mech::spatial::Model& model,
+    const std::vector<mech::spatial::Frame>& motion, post::ResultsWriter& writer,
+    const structure::SpatialAssemblyOptions& options, const std::vector<bool>& field_steps, const Log& log,
+    const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
+
+}  // namespace kinetofem::pipeline
