@@ -12,7 +12,8 @@
 namespace kinetofem::loads {
 
 SlideStations add_slide_stations(fem::Mesh& mesh, const std::string& face_set, const Eigen::Vector3d& axis_point,
-                                 const Eigen::Vector3d& axis, double window_m, double spacing_m) {
+                                 const Eigen::Vector3d& axis, double window_m, double spacing_m,
+                                 const std::string& infix) {
   require(window_m > 0 && std::isfinite(window_m) && spacing_m > 0 && std::isfinite(spacing_m),
           "slide face '{}': window {} m and station spacing {} m must be positive", face_set, window_m, spacing_m);
   require(std::abs(axis.norm() - 1.0) < 1e-12, "slide face '{}': the axis is not a unit vector", face_set);
@@ -48,7 +49,7 @@ SlideStations add_slide_stations(fem::Mesh& mesh, const std::string& face_set, c
             "slide face '{}': the window at {:.3f} mm holds no whole face (faces longer than the bearing's {:.3f} mm: "
             "mesh finer)",
             face_set, s / units::kMm, window_m / units::kMm);
-    const std::string name = fmt::format("{}.at_{:.6g}mm", face_set, s / units::kMm);
+    const std::string name = fmt::format("{}{}{:.6g}mm", face_set, infix, s / units::kMm);
     mesh.face_sets[name] = std::move(window);
     out.face_sets.push_back(name);
     out.s_m.push_back(s);

@@ -14,6 +14,7 @@
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/loads/iso_fit.hpp"
 #include "kinetofem/loads/link_loads.hpp"
+#include "kinetofem/loads/slide_stations.hpp"
 #include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
 #include "kinetofem/mechanisms/multibody/system.hpp"
 #include "kinetofem/solver/couplings.hpp"
@@ -1000,18 +1001,6 @@ void ElasticAssembly::Impl::tie_slide(JointData& jd, const mech::Joint& joint, c
 void ElasticAssembly::Impl::add_guide_stations(JointData& jd, const mech::Joint& joint, const std::string& who) {
   PartData& guide = *parts[size_t(part_of_body[size_t(jd.body_i)])];
   const std::string face_set = face_set_of_joint(jd.body_i, joint.name);
-  fem::Mesh& mesh = guide.supported.mesh;
-  std::vector<fem::FaceBlock> faces;
-  try {
-    faces = mesh.face_set(face_set);
-  } catch (const Error& e) {
-    fail("{}: {}: the guide's face set: {}", guide.label, who, e.what());
-  }
-  auto along = [&](fem::Index n) { return (mesh.nodes.row(n).head<2>().transpose() - jd.line_point).dot(jd.axis); };
-  const std::vector<fem::Index> nodes = fem::nodes_of_faces(faces);
-  require(!nodes.empty(), "{}: {}: the guide's face set '{}' is empty", guide.label, who, face_set);
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const fem::Index n : nodes) lo = std::min(lo, along(n)), hi = std::max(hi, along(n));
   const auto option = std::find_if(options.slides.begin(), options.slides.end(),
                                    [&](const SlideOption& o) { return o.joint == joint.name; });
   double contact = option != options.slides.end() ? option->contact_length_m : 0.0;
@@ -1038,37 +1027,23 @@ void ElasticAssembly::Impl::add_guide_stations(JointData& jd, const mech::Joint&
     require(contact > 0, "elastic assembly: {}: the slider's face set has no extent along the axis", who);
   }
   require(std::isfinite(contact), "elastic assembly: {}: contact length {} m is not finite", who, contact);
-  require(hi - lo >= contact * (1 - 1e-9),
-          "elastic assembly: {}: the guide's face set '{}' on body '{}' is {:.3f} mm long along the axis, shorter than "
-          "the slider's contact length {:.3f} mm",
-          who, face_set, joint.body_i, (hi - lo) / units::kMm, contact / units::kMm);
   jd.contact_length = contact;
   const double spacing = option != options.slides.end() && option->station_spacing_m > 0 ? option->station_spacing_m
                                                                                          : 0.25 * contact;
-  const double first = lo + 0.5 * contact, last = hi - 0.5 * contact;
-  const int count = std::max(1, int(std::ceil((last - first) / spacing - 1e-9)) + 1);
-  const double slack = 1e-9 * contact;
-  for (int k = 0; k < count; ++k) {
-    const double s = count == 1 ? 0.5 * (first + last) : first + (last - first) * k / (count - 1);
-    // The window: the faces whose nodes all lie within half a contact length
-    // of the station.
-    std::vector<fem::FaceBlock> window;
-    for (const fem::FaceBlock& block : faces) {
-      fem::FaceBlock kept{block.type, {}};
-      for (fem::Index f = 0; f < block.size(); ++f) {
-        const auto face = block.face(f);
-        if (std::all_of(face.begin(), face.end(), [&](fem::Index n) { return std::abs(along(n) - s) <= 0.5 * contact + slack; }))
-          kept.connectivity.insert(kept.connectivity.end(), face.begin(), face.end());
-      }
-      if (kept.size() > 0) window.push_back(std::move(kept));
-    }
-    const std::string name = fmt::format("{}@{:.6g}mm", face_set, s / units::kMm);
-    require(!window.empty(),
-            "elastic assembly: {}: the guide's window at {:.3f} mm holds no whole face of '{}' (faces longer than the "
-            "contact length {:.3f} mm: mesh the guide finer or give a longer contact length)",
-            who, s / units::kMm, face_set, contact / units::kMm);
-    mesh.face_sets[name] = std::move(window);
-    jd.stations.push_back(add_interface(jd.body_i, Kind::Joint, joint.name, name, jd.line_point + s * jd.axis, false));
+  // The windows of the guide's face set, one contact length long (the axis
+  // and its line point in the plane: z of the mesh does not enter).
+  loads::SlideStations stations;
+  try {
+    stations =
+        loads::add_slide_stations(guide.supported.mesh, face_set, Vector3d(jd.line_point.x(), jd.line_point.y(), 0),
+                                  Vector3d(jd.axis.x(), jd.axis.y(), 0), contact, spacing, "@");
+  } catch (const Error& e) {
+    fail("elastic assembly: {}: the guide, {}: {}", who, guide.label, e.what());
+  }
+  for (size_t k = 0; k < stations.s_m.size(); ++k) {
+    const double s = stations.s_m[k];
+    jd.stations.push_back(
+        add_interface(jd.body_i, Kind::Joint, joint.name, stations.face_sets[k], jd.line_point + s * jd.axis, false));
     jd.station_s.push_back(s);
   }
 }

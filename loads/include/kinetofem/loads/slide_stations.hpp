@@ -18,7 +18,7 @@ namespace kinetofem::loads {
 
 struct SlideStations {
   std::string face_set;                // the slide face the windows are cut from
-  std::vector<std::string> face_sets;  // one per station: "<face_set>.at_<s in mm>mm"
+  std::vector<std::string> face_sets;  // one per station: "<face_set><infix><s in mm>mm"
   std::vector<double> s_m;             // increasing
   double window_m = 0.0;               // each window's length along the axis
 };
@@ -27,11 +27,13 @@ struct SlideStations {
 // centres run from half a window inside one end of the set to half a window
 // inside the other, at most `spacing_m` apart; a window holds the faces whose
 // nodes all lie within half a window (and 1e-9 of it) of its centre. Adds the
-// windows to mesh.face_sets. Throws Error naming the face set when it is
-// missing, shorter than a window, or a window holds no whole face (faces
-// longer than the window: mesh finer).
+// windows to mesh.face_sets, named by `infix` (the elastic assembly's guide
+// stations use "@"). Throws Error naming the face set when it is missing,
+// shorter than a window, or a window holds no whole face (faces longer than
+// the window: mesh finer).
 SlideStations add_slide_stations(fem::Mesh& mesh, const std::string& face_set, const Eigen::Vector3d& axis_point,
-                                 const Eigen::Vector3d& axis, double window_m, double spacing_m);
+                                 const Eigen::Vector3d& axis, double window_m, double spacing_m,
+                                 const std::string& infix = ".at_");
 
 // The stations a bearing at s lies between, and the share of the second
 // (0 at station a, 1 at b). Throws Error naming `who` and s when s lies beyond
