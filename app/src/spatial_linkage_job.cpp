@@ -171,6 +171,7 @@ Eigen::Vector3d spec_default_vector(const std::string& path);
 
 const std::vector<KeySpec>& spatial_linkage_schema() {
   static const std::vector<KeySpec> schema = [] {
+    const sp::DynamicsOptions idas_defaults;
     std::vector<KeySpec> s = mechanism_case_keys("spatial_linkage");
     const std::string joint_types = join_names(offered_joint_names());
     // bodies, points, point masses
@@ -366,7 +367,7 @@ const std::vector<KeySpec>& spatial_linkage_schema() {
     s.push_back({.path = "gravity.vector_m_s2",
                  .type = Type::Vector3,
                  .unit = "m/s^2",
-                 .default_vector = std::array<double, 3>{0, 0, -9.80665},
+                 .default_vector = std::array<double, 3>{0, 0, -units::kStandardGravity},
                  .doc = "gravity, world; [0, 0, 0]: none"});
     s.push_back({.path = "simulation.method",
                  .type = Type::String,
@@ -390,14 +391,14 @@ const std::vector<KeySpec>& spatial_linkage_schema() {
                  .doc = "number of equally spaced output times, both ends included"});
     s.push_back({.path = "simulation.relative_tolerance",
                  .type = Type::Number,
-                 .default_number = 1e-10,
+                 .default_number = idas_defaults.relative_tolerance,
                  .min = 0,
                  .max = 1e-2,
                  .min_exclusive = true,
                  .doc = "idas: relative tolerance"});
     s.push_back({.path = "simulation.absolute_tolerance",
                  .type = Type::Number,
-                 .default_number = 1e-12,
+                 .default_number = idas_defaults.absolute_tolerance,
                  .min = 0,
                  .max = 1,
                  .min_exclusive = true,
