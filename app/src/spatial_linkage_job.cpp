@@ -21,6 +21,7 @@
 #include "kinetofem/mechanisms/spatial/dynamics.hpp"
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
 #include "kinetofem/mechanisms/time_grid.hpp"
+#include "kinetofem/pipeline/motion_stages.hpp"
 #include "kinetofem/pipeline/spatial_histories.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
@@ -409,6 +410,12 @@ const std::vector<KeySpec>& spatial_linkage_schema() {
                  .default_number = 0,
                  .min = 0,
                  .doc = "idas: largest step; 0: no limit"});
+    s.push_back({.path = "simulation.initial_step_s",
+                 .type = Type::Number,
+                 .unit = "s",
+                 .default_number = idas_defaults.initial_step_s,
+                 .min = 0,
+                 .doc = "idas: first step; 0: automatic"});
     s.push_back({.path = "simulation.characteristic_length_mm",
                  .type = Type::Number,
                  .unit = "mm",
@@ -667,6 +674,7 @@ MechanismCaseSummary run_spatial_linkage(const CaseFile& c, const RunOptions& op
   dynamics.relative_tolerance = c.number("simulation.relative_tolerance");
   dynamics.absolute_tolerance = c.number("simulation.absolute_tolerance");
   dynamics.max_step_s = c.number("simulation.max_step_s");
+  dynamics.initial_step_s = c.number("simulation.initial_step_s");
 
   // ---- compile, assemble, run --------------------------------------------------
   std::unique_ptr<sp::System> system;
@@ -693,6 +701,21 @@ MechanismCaseSummary run_spatial_linkage(const CaseFile& c, const RunOptions& op
   }
   log.info("  {}: {} frames in {:.2f} s", dense.summary.method, dense.frames.size(), clock.seconds());
   const EnergyBalance energy = energy_balance(*system, dense);
+  // A motion too inaccurate to use is refused with its values (the limits of
+  // the planar runs, pipeline/motion_stages.hpp), before any results are written.
+  const std::string tighten = fmt::format(
+      "at relative tolerance {:g} and absolute tolerance {:g}: tighten them (simulation.relative_tolerance, "
+      "simulation.absolute_tolerance)",
+      dynamics.relative_tolerance, dynamics.absolute_tolerance);
+  require(dense.summary.max_drift_relative <= pipeline::kMaxRelativeConstraintDrift,
+          "{}: the motion ({}) is not accurate enough to use: its joints drift apart by {:.3g} of the characteristic "
+          "length ({:.3g} m), more than the {:g} accepted, {}",
+          c.path().string(), dense.summary.method, dense.summary.max_drift_relative, dense.summary.max_drift_position_m,
+          pipeline::kMaxRelativeConstraintDrift, tighten);
+  require(energy.work_energy_error <= pipeline::kMaxEnergyBalanceError,
+          "{}: the motion ({}) is not accurate enough to use: its work-energy balance is off by {:.3g} of the peak "
+          "power times the duration, more than the {:g} accepted, {}",
+          c.path().string(), dense.summary.method, energy.work_energy_error, pipeline::kMaxEnergyBalanceError, tighten);
   sp::Results results;
   results.summary = dense.summary;
   for (std::size_t k = 0; k < dense.frames.size(); k += std::size_t(split))
