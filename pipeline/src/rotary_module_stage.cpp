@@ -18,37 +18,21 @@ namespace names = mech::manipulator;
 
 namespace {
 
-// A planar part's attachments as the spatial loads take them.
+// A planar part's attachments as the spatial loads take them, the gripper
+// and the casting moved from the arm to the module.
 SpatialPart spatial_part(const Part& part, const mech::spatial::RotaryModule& module) {
-  SpatialPart out;
-  out.label = part.name();
-  out.model = part.model;
+  SpatialPart out = structure::spatial_part_of(part);
   loads::SpatialLinkDefinition& a = out.attachments;
-  a.body = part.body();
-  require(part.held_face.empty(), "{}: a part of the ground (held on '{}') is not analysed with the rotary module yet",
-          part.name(), part.held_face);
-  for (const loads::JointAttachment& j : part.attachments.joints) {
-    require(j.distribution == loads::BoreLoad::DistributingCoupling,
-            "{}: joint '{}': with the rotary module a pin's load enters through a distributing coupling only (no "
-            "bearing pressure, no contact)",
-            part.name(), j.joint);
-    a.joints.push_back({j.joint, j.face_set});
-  }
-  for (const loads::DriveAttachment& d : part.attachments.drives) a.joints.push_back({d.drive, d.face_set});
+  if (part.body() != module.carrier) return out;
+  std::erase_if(a.point_masses, [](const loads::SpatialAttachment& m) {
+    return m.name == names::kGripperMass || m.name == names::kCastingMass;
+  });
+  // The module's bearing sits where the planar case hung the gripper.
+  std::string mount = names::kGripperMount;
   for (const loads::PointMassAttachment& m : part.attachments.point_masses)
-    if (!(part.body() == module.carrier && (m.point_mass == names::kGripperMass || m.point_mass == names::kCastingMass)))
-      a.point_masses.push_back({m.point_mass, m.face_set});
-  require(part.attachments.transmissions.empty() && part.attachments.springs.empty() &&
-              part.attachments.point_forces.empty(),
-          "{}: transmissions, springs and point forces are not taken with the rotary module yet", part.name());
-  if (part.body() == module.carrier) {
-    // The module's bearing sits where the planar case hung the gripper.
-    std::string mount = names::kGripperMount;
-    for (const loads::PointMassAttachment& m : part.attachments.point_masses)
-      if (m.point_mass == names::kGripperMass) mount = m.face_set;
-    a.joints.push_back({mech::spatial::rotary_joint_name(module), mount});
-    a.joints.push_back({mech::spatial::rotary_drive_name(module), mount});
-  }
+    if (m.point_mass == names::kGripperMass) mount = m.face_set;
+  a.joints.push_back({mech::spatial::rotary_joint_name(module), mount});
+  a.joints.push_back({mech::spatial::rotary_drive_name(module), mount});
   return out;
 }
 
@@ -56,8 +40,7 @@ SpatialPart spatial_part(const Part& part, const mech::spatial::RotaryModule& mo
 
 RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, const std::vector<Part>& parts,
                                           const std::vector<double>& times, const RotaryModuleSettings& settings,
-                                          const std::filesystem::path& results_file,
-                                          const post::Provenance& provenance,
+                                          const std::filesystem::path& results_file, const post::Provenance& provenance,
                                           const loads::LinkStressOptions& options, const Log& log) {
   require(times.size() >= 2, "rotary module: fewer than two output times");
   require(settings.duration_s > 0 && std::isfinite(settings.duration_s) && settings.start_s >= 0,
@@ -95,9 +78,10 @@ RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, con
   const double step = (times.back() - times.front()) / double(times.size() - 1);
   const double end = settings.start_s + settings.duration_s;
   while (out.times.back() < end - 1e-9 * step) out.times.push_back(std::min(end, out.times.back() + step));
-  log.info("rotary module: the casting turned {:.1f} deg about the arm from t = {:.4g} s in {:.4g} s; {} output times "
-           "through the spatial multibody core",
-           settings.angle_rad / units::kDeg, settings.start_s, settings.duration_s, out.times.size());
+  log.info(
+      "rotary module: the casting turned {:.1f} deg about the arm from t = {:.4g} s in {:.4g} s; {} output times "
+      "through the spatial multibody core",
+      settings.angle_rad / units::kDeg, settings.start_s, settings.duration_s, out.times.size());
   const mech::spatial::Results run = mech::spatial::run_kinematics(mech::spatial::System(spatial), out.times);
   const std::string drive = mech::spatial::rotary_drive_name(module);
   for (const mech::spatial::Frame& f : run.frames)

@@ -11,6 +11,7 @@
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/loads/slide_stations.hpp"
 #include "kinetofem/loads/spatial_link_loads.hpp"
+#include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
 #include "kinetofem/mechanisms/spatial/system.hpp"
 #include "kinetofem/solver/couplings.hpp"
 #include "kinetofem/solver/element_materials.hpp"
@@ -90,6 +91,18 @@ struct SpatialElasticAssembly::Impl {
     std::vector<bool> rotation;
     std::vector<std::string> owner;
     std::vector<int> drive_row;  // per DriveData: its row
+    // Springs (the chains): elongation g u, stiffness k; the chain's pose.
+    std::vector<Eigen::RowVectorXd> spring_g;
+    std::vector<double> spring_k;
+    std::vector<ChainResult> chain;
+  };
+  // A chain (mech::spatial::JointType::Chain): a tension-only axial member
+  // from the hinge (body_i's P_i, -1: the ground) to its tangent point on the
+  // roller (body_j, centre P_j), in the plane normal to h_i.
+  struct ChainData {
+    int joint = -1, body_i = -1, body_j = -1, if_i = -1, if_j = -1;
+    const spatial::ConstraintBlock* block = nullptr;
+    double ea = 0.0;
   };
 
   Log log;
@@ -102,6 +115,7 @@ struct SpatialElasticAssembly::Impl {
   std::vector<Interface> interfaces;
   std::vector<std::vector<int>> interfaces_of_body;
   std::vector<JointData> joints;
+  std::vector<ChainData> chains;
   std::vector<DriveData> drives;
   std::vector<PointData> points;
   std::vector<SpatialPart> given_parts;
@@ -226,10 +240,22 @@ SpatialElasticAssembly::Impl::Impl(const std::vector<SpatialPart>& given, const 
 
 void SpatialElasticAssembly::Impl::add_joint(int j) {
   const spatial::Joint& joint = system.model().joints[size_t(j)];
-  require(joint.type != spatial::JointType::Chain,
-          "spatial elastic assembly: joint '{}': a chain is not modelled in the spatial assembly (the planar one "
-          "has it)",
-          joint.name);
+  if (joint.type == spatial::JointType::Chain) {
+    ChainData cd;
+    cd.joint = j;
+    cd.block = &system.block(joint.name);
+    cd.body_i = cd.block->body_i;
+    cd.body_j = cd.block->body_j;
+    for (const ChainMember& member : options.chains)
+      if (member.chain == joint.name) cd.ea = member.axial_stiffness_n;
+    require(cd.ea > 0 && std::isfinite(cd.ea),
+            "spatial elastic assembly: chain '{}' needs its axial stiffness EA > 0 (SpatialAssemblyOptions::chains)",
+            joint.name);
+    cd.if_i = attach(cd.body_i, joint.name, system.named_point(cd.body_i, joint.point_i), "joint");
+    cd.if_j = attach(cd.body_j, joint.name, system.named_point(cd.body_j, joint.point_j), "joint");
+    chains.push_back(cd);
+    return;
+  }
   JointData jd;
   jd.joint = j;
   jd.block = &system.block(joint.name);
@@ -472,6 +498,34 @@ SpatialElasticAssembly::Impl::Rows SpatialElasticAssembly::Impl::rows_of(const s
         add(si, sj, X, true, across[c], fmt::format("joint '{}' (moment about {})", joint.name, axis_name[c]));
     }
   }
+  for (const ChainData& cd : chains) {
+    const spatial::Joint& joint = system.model().joints[size_t(cd.joint)];
+    const Eigen::Matrix3d& Ri = pose.R[size_t(cd.body_i)];
+    const Vector3d f = Ri * cd.block->f_i, g = Ri * cd.block->g_i;
+    const Vector3d hinge = pose.origin[size_t(cd.body_i)] + Ri * system.named_point(cd.body_i, joint.point_i);
+    const Vector3d centre = pose.P[size_t(cd.if_j)];
+    // In the chain's plane (f, g through the roller's centre).
+    const Eigen::Vector2d hinge_2d((hinge - centre).dot(f), (hinge - centre).dot(g));
+    require(hinge_2d.norm() > cd.block->radius_m,
+            "spatial elastic assembly at t = {:.6g} s: chain '{}': the hinge lies within the roller", frame.t,
+            joint.name);
+    const mech::ChainTangent tangent =
+        mech::chain_tangent(hinge_2d, Eigen::Vector2d::Zero(), cd.block->radius_m, cd.block->sigma);
+    ChainResult cr;
+    cr.chain = joint.name;
+    cr.axial_stiffness_n = cd.ea;
+    cr.free_length_m = tangent.free_length_m;
+    cr.stiffness_n_per_m = cd.ea / tangent.free_length_m;
+    cr.tangent_point_m = centre + tangent.tangent_point_m.x() * f + tangent.tangent_point_m.y() * g;
+    cr.direction = (centre + hinge_2d.x() * f + hinge_2d.y() * g - cr.tangent_point_m).normalized();
+    // elongation = n . (u_hinge - u_T), the hinge's and the tangent point's motions.
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
+    add_side(r, {{cd.if_j, 1.0}}, unit(false, cr.direction), cr.tangent_point_m, pose, -1.0);
+    add_side(r, {{cd.if_i, 1.0}}, unit(false, cr.direction), hinge, pose, 1.0);
+    rows.spring_g.push_back(std::move(r));
+    rows.spring_k.push_back(cr.stiffness_n_per_m);
+    rows.chain.push_back(cr);
+  }
   for (const DriveData& dd : drives) {
     const spatial::MotionDrive& drive = system.model().motion_drives[size_t(dd.drive)];
     const Vector3d h = pose.R[size_t(dd.body_i)] * dd.block->h_i;
@@ -567,6 +621,7 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
   for (const auto& part : parts)
     for (Eigen::Index k = 0; k < part->F.rows(); ++k)
       if (k % 6 < 3) compliance = std::max(compliance, part->F(k, k));
+  for (const double k : rows.spring_k) compliance = std::max(compliance, 1.0 / k);
   const double U = compliance > 0 ? compliance * P : Lr;
 
   // Interfaces that no row ties and no point loads (a slider's stations away
@@ -576,6 +631,7 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
   for (int k = 0; k < M; ++k) {
     bool used = false;
     for (const Eigen::RowVectorXd& r : rows.C) used = used || r.segment<6>(6 * k).cwiseAbs().maxCoeff() > 0.0;
+    for (const Eigen::RowVectorXd& r : rows.spring_g) used = used || r.segment<6>(6 * k).cwiseAbs().maxCoeff() > 0.0;
     for (const PointData& pd : points) used = used || pd.iface == k;
     if (used) {
       slot[size_t(k)] = int(active.size());
@@ -616,6 +672,12 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
       A.block<6, 1>(cl + 6 * a, cm + r) = -c.transpose();
       A.block<1, 6>(cm + r, cu + 6 * a) = c;  // (d) C u = 0
     }
+  // (b) with the springs: lambda + S u - C^T mu = external load, S = sum k g^T g
+  for (size_t sp = 0; sp < rows.spring_g.size(); ++sp) {
+    Eigen::RowVectorXd ga(6 * Ma);
+    for (int a = 0; a < Ma; ++a) ga.segment<6>(6 * a) = rows.spring_g[sp].segment<6>(6 * active[size_t(a)]);
+    A.block(cl, cu, 6 * Ma, 6 * Ma) += rows.spring_k[sp] * ga.transpose() * ga;
+  }
   if (options.unit_load_split)
     for (size_t p = 0; p < points.size(); ++p)
       for (int c = 0; c < 3; ++c) rhs(cl + 6 * slot[size_t(points[p].iface)] + c, 1 + 3 * Eigen::Index(p) + c) = 1.0;
@@ -772,6 +834,14 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
     }
     out.joints.push_back(jl);
   }
+  for (size_t sp = 0; sp < rows.chain.size(); ++sp) {
+    ChainResult cr = rows.chain[sp];
+    cr.elongation_m = rows.spring_g[sp].dot(X.col(0).segment(ou, 6 * M));
+    cr.tension_n = cr.stiffness_n_per_m * cr.elongation_m;
+    require(cr.tension_n > 0, "spatial elastic assembly at t = {:.6g} s: chain '{}' is slack (tension {:.6g} N)",
+            frame.t, cr.chain, cr.tension_n);
+    out.chains.push_back(cr);
+  }
   for (size_t d = 0; d < drives.size(); ++d)
     out.drives.push_back({system.model().motion_drives[size_t(drives[d].drive)].name, x(om + rows.drive_row[d])});
 
@@ -804,6 +874,15 @@ SpatialPoseSolution SpatialElasticAssembly::Impl::solve(const spatial::Frame& fr
         }
         const Eigen::VectorXd deformation = part.F * lambda + part.GtZp * coefficients[q];
         pr.contributions.push_back({"part." + part.body, virtual_lambda.transpose() * deformation});
+      }
+      // A chain: N_v N / k = k (g u_v)(g u).
+      for (size_t sp = 0; sp < rows.chain.size(); ++sp) {
+        const double real = rows.spring_g[sp].dot(X.col(0).segment(ou, 6 * M));
+        Vector3d share;
+        for (int c = 0; c < 3; ++c)
+          share(c) =
+              rows.spring_k[sp] * rows.spring_g[sp].dot(X.col(1 + 3 * Eigen::Index(p) + c).segment(ou, 6 * M)) * real;
+        pr.contributions.push_back({"chain." + rows.chain[sp].chain, share});
       }
     }
     out.points.push_back(std::move(pr));

@@ -6,6 +6,31 @@
 
 namespace kinetofem::structure {
 
+SpatialPart spatial_part_of(const Part& part) {
+  SpatialPart out;
+  out.label = part.name();
+  out.model = part.model;
+  loads::SpatialLinkDefinition& a = out.attachments;
+  a.body = part.body();
+  require(part.held_face.empty(), "{}: a part of the ground (held on '{}') is not taken by the spatial core yet",
+          part.name(), part.held_face);
+  for (const loads::JointAttachment& j : part.attachments.joints) {
+    require(j.distribution == loads::BoreLoad::DistributingCoupling,
+            "{}: joint '{}': in the spatial core a pin's load enters through a distributing coupling only (no "
+            "bearing pressure, no contact)",
+            part.name(), j.joint);
+    a.joints.push_back({j.joint, j.face_set});
+  }
+  for (const loads::DriveAttachment& d : part.attachments.drives) a.joints.push_back({d.drive, d.face_set});
+  for (const loads::PointMassAttachment& m : part.attachments.point_masses)
+    a.point_masses.push_back({m.point_mass, m.face_set});
+  for (const loads::PointForceAttachment& f : part.attachments.point_forces)
+    a.point_forces.push_back({f.point_force, f.face_set});
+  require(part.attachments.transmissions.empty() && part.attachments.springs.empty(),
+          "{}: transmissions and springs are not taken by the spatial core's loads yet", part.name());
+  return out;
+}
+
 std::vector<char> loaded_nodes(const SpatialPart& part) {
   const fem::Mesh& mesh = part.model.mesh;
   std::vector<char> loaded(std::size_t(mesh.node_count()), 0);

@@ -21,10 +21,18 @@
 //       same statics, two formulations);
 //    c. the tip's displacement is the sum of the parts' contributions and its
 //       compliance is symmetric (Maxwell-Betti, round-off: 1e-9).
-// 3. Bad models: a part without the face set of a joint; a joint nobody
+// 3. A planar linkage lifted into the spatial core (the SPEC §1 lever-chain
+//    manipulator with box parts, its chain a tension member of EA = 2e6 N):
+//    the spatial assembly equals the planar ElasticAssembly, displacement
+//    fields 1e-8 of the largest, the chain's tension and the gripper point's
+//    displacement and shares 1e-8 (the same structure: the planar revolute
+//    holds the translations and the tilts about x and y, the spatial one the
+//    translations and the tilts about f and g, the same span for h = z).
+// 4. Bad models: a part without the face set of a joint; a joint nobody
 //    drives (a mechanism): Errors naming them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -38,6 +46,11 @@
 #include "kinetofem/mechanisms/motion_law.hpp"
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
 #include "kinetofem/mechanisms/spatial/system.hpp"
+#include "kinetofem/mechanisms/multibody/kinematics.hpp"
+#include "kinetofem/mechanisms/multibody/system.hpp"
+#include "kinetofem/mechanisms/spatial/from_planar.hpp"
+#include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/structure/elastic_assembly.hpp"
 #include "kinetofem/structure/spatial_elastic_assembly.hpp"
 
 namespace kinetofem::structure {
@@ -227,7 +240,57 @@ TEST(SpatialElasticAssembly, ASpatialArmEqualsTheMonolithicReferenceAndTheMultib
   }
 }
 
-// --- 3. Bad models ---------------------------------------------------------
+// --- 3. A planar linkage lifted ---------------------------------------------
+
+TEST(SpatialElasticAssembly, APlanarLinkageLiftedIntoTheSpatialCoreGivesThePlanarAssembly) {
+  const mech::ManipulatorDefinition def = test::lever_chain_definition();
+  mech::MultibodyModel model = mech::make_manipulator_model(def);
+  const std::vector<pipeline::Part> parts = test::lever_chain_parts(def, test::steel());
+  pipeline::apply_mass_properties(model, parts, Log::quiet());
+  const std::vector<double> times = {0.6, 1.4};
+  const mech::Results planar_run = mech::run_kinematics(mech::MultibodySystem(model), times);
+  const sp::Model lifted = sp::from_planar(model);
+  const sp::Results spatial_run = sp::run_kinematics(sp::System(lifted), times);
+
+  AssemblyOptions planar_options;
+  planar_options.chains = {{"chain", 2e6}};
+  planar_options.points = {{"H", "arm", "H", "x0"}};
+  ElasticAssembly planar(parts, model, planar_options);
+  std::vector<SpatialPart> spatial_parts;
+  for (const pipeline::Part& part : parts) spatial_parts.push_back(spatial_part_of(part));
+  SpatialAssemblyOptions options;
+  options.chains = planar_options.chains;
+  options.points = {{"H", "arm", "H", "x0"}};
+  SpatialElasticAssembly spatial(spatial_parts, lifted, options);
+  for (size_t k = 0; k < times.size(); ++k) {
+    const PoseSolution p = planar.solve(planar_run.frames[k]);
+    const SpatialPoseSolution s = spatial.solve(spatial_run.frames[k]);
+    double scale = 0.0, worst = 0.0;
+    for (size_t q = 0; q < parts.size(); ++q) {
+      scale = std::max(scale, p.parts[q].displacement_m.rowwise().norm().maxCoeff());
+      worst = std::max(worst, (s.parts[q].displacement_m - p.parts[q].displacement_m).cwiseAbs().maxCoeff());
+    }
+    const PointResult &hp = p.point("H"), &hs = s.point("H");
+    std::printf("t = %.2f s: max displacement %.4g mm, spatial vs planar %.2e of it; chain %.3f / %.3f N; |u_H| %.5g "
+                "/ %.5g mm\n",
+                times[k], 1e3 * scale, worst / scale, s.chains.at(0).tension_n, p.chain("chain").tension_n,
+                1e3 * hs.displacement_m.norm(), 1e3 * hp.displacement_m.norm());
+    EXPECT_LT(worst, 1e-8 * scale);  // the same structure, two formulations
+    EXPECT_NEAR(s.chains.at(0).tension_n, p.chain("chain").tension_n, 1e-8 * p.chain("chain").tension_n);
+    EXPECT_LT((hs.displacement_m - hp.displacement_m).norm(), 1e-8 * hp.displacement_m.norm());
+    EXPECT_LT((hs.compliance_m_per_n - hp.compliance_m_per_n).norm(), 1e-8 * hp.compliance_m_per_n.norm());
+    ASSERT_EQ(hs.contributions.size(), 3u);  // part.lever, part.arm, chain.chain
+    for (const PointContribution& share : hs.contributions) {
+      const auto planar_share = std::find_if(hp.contributions.begin(), hp.contributions.end(),
+                                             [&](const PointContribution& c) { return c.name == share.name; });
+      ASSERT_NE(planar_share, hp.contributions.end()) << share.name;
+      EXPECT_LT((share.displacement_m - planar_share->displacement_m).norm(), 1e-8 * hp.displacement_m.norm())
+          << share.name;
+    }
+  }
+}
+
+// --- 4. Bad models ---------------------------------------------------------
 
 TEST(SpatialElasticAssembly, APartWithoutTheFaceSetOfAJointIsNamed) {
   SpatialArm arm = spatial_arm();

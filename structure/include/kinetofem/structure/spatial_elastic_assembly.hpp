@@ -23,7 +23,11 @@
 //     is held in the components the joint's reaction carries (joint_facts:
 //     forces across the axis f, g and along h when 3; moments about f, g and
 //     h when 3, the universal joint's about h_i x h_j), turned into world by
-//     body_i's rotation. A chain joint is refused.
+//     body_i's rotation.
+//   * Chain (SPEC §1, in the plane normal to h_i): a tension-only axial member
+//     from the hinge (P_i) to its tangent point T on the roller (body_j,
+//     centre P_j), k = EA / free length (SpatialAssemblyOptions::chains); a
+//     slack chain in a pose is an Error naming the time.
 //   * Slide (a prismatic joint with a loads::SpatialSlideAttachment on the
 //     parts: a sleeve bearing an arm on two lands): at each land the slider
 //     (the two stations of its slide face that bracket the land, weighted
@@ -81,6 +85,7 @@ struct SpatialAssemblyPoint {
 
 struct SpatialAssemblyOptions {
   std::vector<SpatialAssemblyPoint> points;
+  std::vector<ChainMember> chains;  // the EA of every chain of the mechanism
   fem::StaticSolverOptions solver;
   // |resultant of a part's loads - its body's applied minus inertia loads|
   // relative to their size; above: Error. Infinity: no check.
@@ -114,7 +119,8 @@ struct SpatialPoseSolution {
   std::vector<PartField> parts;          // elastic parts, in the order given
   std::vector<SpatialJointLoad> joints;  // model joint order
   std::vector<SpatialDriveLoad> drives;  // motion drives not taken by a slide, model order
-  std::vector<PointResult> points;       // options.points order (contributions: "part.<body>")
+  std::vector<ChainResult> chains;       // model joint order
+  std::vector<PointResult> points;       // options.points order (contributions: "part.<body>", "chain.<c>")
   int unknowns = 0, rank = 0;
   double relative_residual = 0.0;  // of the scaled dense system
   double max_displacement_m = 0.0;

@@ -12,6 +12,7 @@
 
 #include "kinetofem/loads/spatial_link_loads.hpp"
 #include "kinetofem/solver/fe_model.hpp"
+#include "kinetofem/structure/part.hpp"
 
 namespace kinetofem::structure {
 
@@ -21,6 +22,15 @@ struct SpatialPart {
   fem::FeModel model;                        // mesh in the body frame, material; no supports
   const std::string& body() const { return attachments.body; }
 };
+
+// A part of a planar linkage as a part of the same linkage lifted into the
+// spatial core (mech::spatial::from_planar keeps the bodies' frames and the
+// joints', drives' and point masses' names): each joint, motion drive, point
+// mass and point force through the same face set. Throws Error naming the
+// part for what the spatial loads do not take: a bore load other than the
+// distributing coupling (bearing pressure, contact), a transmission, a spring,
+// a part of the ground.
+SpatialPart spatial_part_of(const Part& part);
 
 // The nodes of the face sets through which the mechanism loads the part (its
 // joints and drives, point masses, point forces, and the side of each slide
