@@ -21,7 +21,9 @@
 // Output: results/<name>.h5 (+ .xdmf) with the spatial histories and moving
 // skeleton of pipeline/spatial_histories.hpp, plus the energy checks'
 // histories; a console summary: peak drive efforts, peak joint reactions,
-// drift, redundant rows, and the work-energy and power balances.
+// drift, redundant rows, and the work-energy and power balances. A run whose
+// drift or work-energy balance exceeds the planar runs' limits
+// (pipeline/motion_stages.hpp) is refused before any results are written.
 #include <string>
 #include <vector>
 
