@@ -266,7 +266,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
       std::filesystem::path file = run.results_file;
       file.replace_filename(file.stem().string() + ".rotary_module.h5");
       turned = pipeline::analyse_rotary_module(run.model, parts, run_case.times, *rotary, file, run_case.provenance,
-                                               run_case.stress, log);
+                                               run_case.stress, log,
+                                               run_case.assembly ? &*run_case.assembly : nullptr);
     } catch (const Error& e) {
       fail("{}: rotary module: {}", c.path().string(), e.what());
     }
@@ -297,6 +298,18 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
       std::printf("    %-8s peak von Mises %.3f MPa at t = %.4f s, deformation %.4f mm; equilibrium %.1e\n", p.body.c_str(),
                   p.peak_von_mises_pa / kMpa, p.peak_von_mises_time_s, p.peak_displacement_m / kMm,
                   p.worst_equilibrium_residual);
+    if (turned->assembly)
+      for (const pipeline::PointSummary& ps : turned->assembly->points) {
+        std::string split;
+        for (const structure::PointContribution& share : ps.contributions_at_max)
+          split += fmt::format("{}{} {:.4f}", split.empty() ? "" : ", ", share.name,
+                               share.displacement_m.dot(ps.displacement_at_max_m.normalized()) / kMm);
+        std::printf("    elastic assembly, point %-8s deflection up to %.4f mm at t = %.4f s (x %.4f, y %.4f, z %.4f "
+                    "mm); split along it (mm): %s\n",
+                    ps.name.c_str(), ps.max_displacement_m / kMm, ps.max_displacement_time_s,
+                    ps.displacement_at_max_m.x() / kMm, ps.displacement_at_max_m.y() / kMm,
+                    ps.displacement_at_max_m.z() / kMm, split.c_str());
+      }
     std::printf("    results: %s (+ .xdmf)\n", turned->results_file.string().c_str());
   }
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", summary.results_file.string().c_str(), summary.total_seconds);

@@ -10,6 +10,7 @@
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
 #include "kinetofem/mechanisms/spatial/rotary_module.hpp"
 #include "kinetofem/pipeline/spatial_histories.hpp"
+#include "kinetofem/pipeline/spatial_part_factors.hpp"
 #include "kinetofem/postproc/results_writer.hpp"
 
 namespace kinetofem::pipeline {
@@ -41,7 +42,8 @@ SpatialPart spatial_part(const Part& part, const mech::spatial::RotaryModule& mo
 RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, const std::vector<Part>& parts,
                                           const std::vector<double>& times, const RotaryModuleSettings& settings,
                                           const std::filesystem::path& results_file, const post::Provenance& provenance,
-                                          const loads::LinkStressOptions& options, const Log& log) {
+                                          const loads::LinkStressOptions& options, const Log& log,
+                                          const structure::AssemblyOptions* assembly) {
   require(times.size() >= 2, "rotary module: fewer than two output times");
   require(settings.duration_s > 0 && std::isfinite(settings.duration_s) && settings.start_s >= 0,
           "rotary module: its turn must take a positive time from a start >= 0 (start {} s, duration {} s)",
@@ -91,11 +93,28 @@ RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, con
         out.peak_torque_time_s = f.t;
       }
 
+  std::vector<SpatialPart> spatial_parts;
+  for (const Part& p : parts) spatial_parts.push_back(spatial_part(p, module));
+  const SpatialPartFactors factors(spatial_parts, options.solver, log);
   post::ResultsWriter writer(results_file, provenance);
   write_spatial_mechanism_histories(writer, spatial, run);
-  for (const Part& p : parts)
-    out.parts.push_back(
-        analyse_spatial_part_over_motion(spatial_part(p, module), spatial, run.frames, writer, options, log));
+  if (assembly) {
+    require(assembly->drives.empty() && assembly->pins.empty() && assembly->transmissions.empty() &&
+                assembly->coupling == structure::BoreCoupling::Distributing,
+            "rotary module: the spatial elastic assembly takes the chains and the tracked points of the planar one; "
+            "compliant drives, elastic pins, transmissions and rigid-bore couplings are not taken yet");
+    structure::SpatialAssemblyOptions o;
+    o.chains = assembly->chains;
+    o.solver = options.solver;
+    for (const structure::AssemblyPoint& p : assembly->points)
+      o.points.push_back({p.name, p.body, p.point, p.face_set});
+    o.points.push_back({std::string(names::kCastingMass), module.name, std::string(names::kCastingMass), ""});
+    out.assembly =
+        analyse_spatial_assembly_over_motion(spatial_parts, spatial, run.frames, writer, o, {}, log, factors.lent());
+  }
+  for (size_t k = 0; k < spatial_parts.size(); ++k)
+    out.parts.push_back(analyse_spatial_part_over_motion(spatial_parts[k], spatial, run.frames, writer, options, log,
+                                                         nullptr, &factors.of(k)));
   writer.commit();
   out.results_file = results_file;
   return out;

@@ -45,7 +45,10 @@ Model with_rotary_module(Model model, const RotaryModule& module) {
   body.inertia_kgm2 = module.inertia_kgm2;
   body.position = carrier->position + carrier_rotation * mount;
   body.euler_parameters = carrier->euler_parameters.normalized();
-  if (module.payload.mass_kg > 0) body.point_masses.push_back(module.payload);
+  if (module.payload.mass_kg > 0) {
+    body.point_masses.push_back(module.payload);
+    body.points[module.payload.name] = module.payload.position_body;  // where the casting's centre is
+  }
   const std::string carrier_name = carrier->name, mount_point = module.mount_point;
   model.bodies.push_back(std::move(body));
   model.joints.push_back(make_joint(rotary_joint_name(module), JointType::Revolute, carrier_name, mount_point,

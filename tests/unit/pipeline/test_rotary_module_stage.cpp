@@ -58,5 +58,46 @@ TEST(AnalyseRotaryModule, EveryPartBalancesOverTheStrokeAndTheTurn) {
   fs::remove_all(dir);
 }
 
+// With the elastic assembly (chain EA 2e6 N, the gripper point H on the arm's
+// mount face): the module's casting is a tracked point of the spatial
+// assembly. References: the unit-load split adds up to the displacement
+// (Maxwell-Betti, 1e-9); before the turn everything stays in the plane (the
+// planar linkage, |u_z| < 1e-9 |u|); once turned, the casting hangs off the
+// plane and the arm twists under its weight, so the casting moves out of the
+// plane (|u_z| > 1e-3 |u| at the end of the turn).
+TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned) {
+  const mech::ManipulatorDefinition def = structure::test::lever_chain_definition();
+  mech::MultibodyModel model = mech::make_manipulator_model(def);
+  const std::vector<Part> parts = structure::test::lever_chain_parts(def, structure::test::steel());
+  apply_mass_properties(model, parts, Log::quiet());
+  RotaryModuleSettings s;
+  s.angle_rad = 90 * structure::test::kDeg;
+  s.start_s = 2.0;
+  s.duration_s = 0.5;
+  s.gripper_inertia_kgm2 = Eigen::Vector3d(0.15, 0.15, 0.15).asDiagonal();
+  s.casting_offset_m = {0.0, -0.12, 0.0};
+  s.casting_inertia_kgm2 = Eigen::Vector3d(0.05, 0.05, 0.05).asDiagonal();
+  structure::AssemblyOptions assembly;
+  assembly.chains = {{"chain", 2e6}};
+  assembly.points = {{"H", "arm", "H", "x0"}};
+  const fs::path dir = fs::temp_directory_path() / fmt::format("kinetofem_rotary_assembly_{}", ::getpid());
+  fs::create_directories(dir);
+  const RotaryModuleSummary r = analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s, dir / "rotary.h5",
+                                                      {}, {}, Log::quiet(), &assembly);
+  ASSERT_TRUE(r.assembly.has_value());
+  ASSERT_EQ(r.assembly->points.size(), 2u);
+  for (const PointSummary& p : r.assembly->points) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const structure::PointContribution& c : p.contributions_at_max) sum += c.displacement_m;
+    EXPECT_LT((sum - p.displacement_at_max_m).norm(), 1e-9 * p.displacement_at_max_m.norm()) << p.name;
+    EXPECT_GT(p.max_displacement_m, 1e-5) << p.name;  // the chain alone stretches by ~0.4 mm
+  }
+  const Eigen::MatrixXd& casting = r.assembly->points[1].displacement_history_m;
+  ASSERT_EQ(casting.rows(), 6);
+  for (Eigen::Index k = 0; k < 5; ++k) EXPECT_LT(std::abs(casting(k, 2)), 1e-9 * casting.row(k).norm()) << k;
+  EXPECT_GT(std::abs(casting(5, 2)), 1e-3 * casting.row(5).norm());
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace kinetofem::pipeline

@@ -17,6 +17,7 @@
 // drive on the arm's face set that carried the gripper in the planar case
 // (the gripper mount). Units SI; angles in rad.
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,6 +27,8 @@
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
+#include "kinetofem/pipeline/spatial_assembly_over_motion.hpp"
+#include "kinetofem/structure/elastic_assembly.hpp"
 #include "kinetofem/postproc/provenance.hpp"
 
 namespace kinetofem::pipeline {
@@ -43,6 +46,11 @@ struct RotaryModuleSummary {
   std::vector<double> times;  // the motion and then the turn
   double peak_torque_nm = 0.0, peak_torque_time_s = 0.0;  // the module drive's torque about the arm's axis
   std::vector<PartSummary> parts;
+  // With the elastic assembly: the mechanism and the module as one structure
+  // (spatial_assembly_over_motion.hpp) over the motion and the turn; its
+  // tracked points are the planar assembly's and "casting" (the casting's
+  // centre on the turning module: the gripper's deflection).
+  std::optional<SpatialAssemblySummary> assembly;
   std::filesystem::path results_file;
 };
 
@@ -52,12 +60,16 @@ struct RotaryModuleSummary {
 // are added at the same spacing). Writes `results_file` (the spatial
 // histories, the moving skeletons, each part's fields). Throws Error naming
 // the part for an attachment the spatial loads cannot take (a bearing
-// pressure, a pin in contact, a transmission, a spring, a point force, a part
-// of the ground).
+// pressure, a pin in contact, a transmission, a spring, a part of the
+// ground). `assembly` (optional): the planar case's elastic assembly options;
+// its chains' EA and tracked points carry over to the spatial assembly (its
+// compliant drives, pins and contact do not: an Error says so). One
+// factorization per part serves the assembly and the per-part stage.
 RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, const std::vector<Part>& parts,
                                           const std::vector<double>& times, const RotaryModuleSettings& settings,
                                           const std::filesystem::path& results_file,
                                           const post::Provenance& provenance,
-                                          const loads::LinkStressOptions& options, const Log& log);
+                                          const loads::LinkStressOptions& options, const Log& log,
+                                          const structure::AssemblyOptions* assembly = nullptr);
 
 }  // namespace kinetofem::pipeline
