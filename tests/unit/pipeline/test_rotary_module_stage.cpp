@@ -32,8 +32,8 @@ TEST(AnalyseRotaryModule, EveryPartBalancesOverTheStrokeAndTheTurn) {
   s.casting_inertia_kgm2 = Eigen::Vector3d(0.05, 0.05, 0.05).asDiagonal();
   const fs::path dir = fs::temp_directory_path() / fmt::format("kinetofem_rotary_stage_{}", ::getpid());
   fs::create_directories(dir);
-  const RotaryModuleSummary r = analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s,
-                                                      dir / "rotary.h5", {}, {}, Log::quiet());
+  const RotaryModuleSummary r =
+      analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s, dir / "rotary.h5", {}, {}, Log::quiet());
   // The turn's output times are added at the motion's spacing.
   ASSERT_EQ(r.times.size(), 6u);
   EXPECT_DOUBLE_EQ(r.times.back(), 2.5);
@@ -82,8 +82,8 @@ TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned)
   assembly.points = {{"H", "arm", "H", "x0"}};
   const fs::path dir = fs::temp_directory_path() / fmt::format("kinetofem_rotary_assembly_{}", ::getpid());
   fs::create_directories(dir);
-  const RotaryModuleSummary r = analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s, dir / "rotary.h5",
-                                                      {}, {}, Log::quiet(), &assembly);
+  const RotaryModuleSummary r = analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s, dir / "rotary.h5", {},
+                                                      {}, Log::quiet(), &assembly);
   ASSERT_TRUE(r.assembly.has_value());
   ASSERT_EQ(r.assembly->points.size(), 2u);
   for (const PointSummary& p : r.assembly->points) {

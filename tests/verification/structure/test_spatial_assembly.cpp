@@ -28,7 +28,13 @@
 //    displacement and shares 1e-8 (the same structure: the planar revolute
 //    holds the translations and the tilts about x and y, the spatial one the
 //    translations and the tilts about f and g, the same span for h = z).
-// 4. Bad models: a part without the face set of a joint; a joint nobody
+// 4. A slide (an arm on two lands of a sleeve fixed to the ground, pushed by
+//    its drive, a payload at the tip, gravity; the sleeve's axis oblique):
+//    a serial chain, so the loads the two lands put on the arm add up to the
+//    multibody reaction of the slide and its drive (1e-8: the same statics);
+//    pushed out until the front land passes the arm's last station: an Error
+//    naming the time and the land (the slide beyond its stroke).
+// 5. Bad models: a part without the face set of a joint; a joint nobody
 //    drives (a mechanism): Errors naming them.
 #include <gtest/gtest.h>
 
@@ -42,6 +48,7 @@
 #include "../../unit/structure/structure_fixtures.hpp"
 #include "spatial_monolithic_reference.hpp"
 #include "kinetofem/core/error.hpp"
+#include "kinetofem/loads/slide_stations.hpp"
 #include "kinetofem/loads/spatial_link_loads.hpp"
 #include "kinetofem/mechanisms/motion_law.hpp"
 #include "kinetofem/mechanisms/spatial/kinematics.hpp"
@@ -206,7 +213,8 @@ TEST(SpatialElasticAssembly, ASpatialArmEqualsTheMonolithicReferenceAndTheMultib
     const SpatialPoseSolution pose = assembly.solve(frame);
     // a. the monolithic reference
     const test::SpatialMonolithicResult reference = test::solve_spatial_monolithic(arm.parts, arm.model, frame);
-    EXPECT_LT(reference.relative_residual, 1e-8);  // the reference itself (SparseLU, 3 refinement steps), as the planar one
+    EXPECT_LT(reference.relative_residual,
+              1e-8);  // the reference itself (SparseLU, 3 refinement steps), as the planar one
     double scale = 0.0, worst = 0.0;
     for (size_t p = 0; p < arm.parts.size(); ++p) {
       scale = std::max(scale, reference.displacement[p].rowwise().norm().maxCoeff());
@@ -271,10 +279,11 @@ TEST(SpatialElasticAssembly, APlanarLinkageLiftedIntoTheSpatialCoreGivesThePlana
       worst = std::max(worst, (s.parts[q].displacement_m - p.parts[q].displacement_m).cwiseAbs().maxCoeff());
     }
     const PointResult &hp = p.point("H"), &hs = s.point("H");
-    std::printf("t = %.2f s: max displacement %.4g mm, spatial vs planar %.2e of it; chain %.3f / %.3f N; |u_H| %.5g "
-                "/ %.5g mm\n",
-                times[k], 1e3 * scale, worst / scale, s.chains.at(0).tension_n, p.chain("chain").tension_n,
-                1e3 * hs.displacement_m.norm(), 1e3 * hp.displacement_m.norm());
+    std::printf(
+        "t = %.2f s: max displacement %.4g mm, spatial vs planar %.2e of it; chain %.3f / %.3f N; |u_H| %.5g "
+        "/ %.5g mm\n",
+        times[k], 1e3 * scale, worst / scale, s.chains.at(0).tension_n, p.chain("chain").tension_n,
+        1e3 * hs.displacement_m.norm(), 1e3 * hp.displacement_m.norm());
     EXPECT_LT(worst, 1e-8 * scale);  // the same structure, two formulations
     EXPECT_NEAR(s.chains.at(0).tension_n, p.chain("chain").tension_n, 1e-8 * p.chain("chain").tension_n);
     EXPECT_LT((hs.displacement_m - hp.displacement_m).norm(), 1e-8 * hp.displacement_m.norm());
@@ -290,7 +299,108 @@ TEST(SpatialElasticAssembly, APlanarLinkageLiftedIntoTheSpatialCoreGivesThePlana
   }
 }
 
-// --- 4. Bad models ---------------------------------------------------------
+// --- 4. A slide ----------------------------------------------------------------
+
+struct SlideModel {
+  sp::Model model;
+  std::vector<SpatialPart> parts;
+};
+
+SlideModel slide_model(double push_m) {
+  const BarSize sleeve_size{.length_m = 0.40, .height_m = 0.06, .thickness_m = 0.06, .cells = {16, 2, 2}};
+  const BarSize arm_size{.length_m = 0.60, .height_m = 0.03, .thickness_m = 0.03, .cells = {48, 2, 2}};
+  SlideModel out;
+  sp::Model& m = out.model;
+  m.name = "arm in a sleeve";
+  m.characteristic_length_m = 0.6;
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d(0.3, -1.0, 0.2).normalized()).toRotationMatrix();
+  sp::Body ground;
+  ground.name = "ground";
+  ground.fixed = true;
+  sp::Body sleeve;
+  sleeve.name = "sleeve";
+  sp::set_rotation(sleeve, R);
+  sp::Body arm;
+  arm.name = "arm";
+  sp::set_rotation(arm, R);
+  arm.position = R * Eigen::Vector3d(-0.2, 0, 0);
+  arm.points["tip"] = Eigen::Vector3d(arm_size.length_m, 0, 0);
+  sp::PointMass payload;
+  payload.name = "payload";
+  payload.mass_kg = 5.0;
+  payload.position_body = arm.points["tip"];
+  arm.point_masses = {payload};
+  m.bodies = {ground, sleeve, arm};
+  m.joints = {sp::make_joint("fix", sp::JointType::Fixed, "ground", "origin", "sleeve", "origin"),
+              sp::make_joint("slide", sp::JointType::Prismatic, "sleeve", "origin", "arm", "origin",
+                             Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX())};
+  sp::MotionDrive push;
+  push.name = "push";
+  push.joint = "slide";
+  push.coordinate = sp::DriveCoordinate::Translation;
+  push.law = std::make_shared<mech::Polynomial345Law>(push_m, 1.0);
+  m.motion_drives = {push};
+
+  SpatialPart sleeve_part = bar("sleeve", sleeve_size, {{"fix", "x0"}});
+  SpatialPart arm_part = bar("arm", arm_size, {}, {{"payload", "x1"}});
+  // The lands: two windows 50 mm long on the sleeve's face y0, centred 25 mm
+  // from its ends; the arm's stations on its face y1 every 25 mm.
+  const loads::SlideStations lands = loads::add_slide_stations(sleeve_part.model.mesh, "y0", Eigen::Vector3d::Zero(),
+                                                               Eigen::Vector3d::UnitX(), 0.05, 0.35);
+  EXPECT_EQ(lands.face_sets.size(), 2u);
+  loads::SpatialSlideAttachment slide;
+  slide.joint = "slide";
+  slide.drive = "push";
+  slide.rear_m = lands.s_m.front();
+  slide.front_m = lands.s_m.back();
+  slide.rear_face_set = lands.face_sets.front();
+  slide.front_face_set = lands.face_sets.back();
+  slide.stations = loads::add_slide_stations(arm_part.model.mesh, "y1", Eigen::Vector3d::Zero(),
+                                             Eigen::Vector3d::UnitX(), 0.05, 0.025);
+  sleeve_part.attachments.slides = {slide};
+  arm_part.attachments.slides = {slide};
+  out.parts = {sleeve_part, arm_part};
+  give_mass_of(m, out.parts);
+  return out;
+}
+
+TEST(SpatialElasticAssembly, TheLandsOfASlideCarryItsMultibodyLoadAndASlideBeyondItsStrokeIsNamed) {
+  {
+    const SlideModel slide = slide_model(0.1);
+    const sp::System system(slide.model);
+    const sp::Results run = sp::run_kinematics(system, {0.0, 0.5, 1.0});
+    SpatialAssemblyOptions options;
+    options.points = {{"tip", "arm", "tip", "x1"}};
+    SpatialElasticAssembly assembly(slide.parts, slide.model, options);
+    for (const sp::Frame& frame : run.frames) {
+      const SpatialPoseSolution pose = assembly.solve(frame);
+      const sp::JointState& joint = frame.joints[1];
+      const sp::DriveState& drive = frame.drives[0];
+      const Eigen::Vector3d force = joint.on_j.force_world + drive.on_j.force_world;
+      const Eigen::Vector3d moment = joint.on_j.moment_world + drive.on_j.moment_world +
+                                     (drive.on_j.point_world - joint.on_j.point_world).cross(drive.on_j.force_world);
+      const SpatialJointLoad& lands = pose.joint("slide");
+      std::printf("t = %.2f s: slide load on the arm %.4f N (multibody %.4f N), tip moves %.4g mm\n", frame.t,
+                  lands.force_on_j_n.norm(), force.norm(), 1e3 * pose.point("tip").displacement_m.norm());
+      EXPECT_LT((lands.force_on_j_n - force).norm(), 1e-8 * force.norm());  // the same statics
+      EXPECT_LT((lands.moment_on_j_nm - moment).norm(), 1e-8 * force.norm() * 0.6);
+      EXPECT_GT(pose.point("tip").displacement_m.norm(), 1e-6);
+    }
+  }
+  {
+    const SlideModel slide = slide_model(-0.2);  // the front land passes the arm's last station
+    const sp::System system(slide.model);
+    const sp::Results run = sp::run_kinematics(system, {1.0});
+    SpatialElasticAssembly assembly(slide.parts, slide.model);
+    const std::string message = test::error_of([&] { assembly.solve(run.frames[0]); });
+    EXPECT_NE(message.find("t = 1 s"), std::string::npos) << message;
+    EXPECT_NE(message.find("slide 'slide'"), std::string::npos) << message;
+    EXPECT_NE(message.find("front land"), std::string::npos) << message;
+  }
+}
+
+// --- 5. Bad models ---------------------------------------------------------
 
 TEST(SpatialElasticAssembly, APartWithoutTheFaceSetOfAJointIsNamed) {
   SpatialArm arm = spatial_arm();
