@@ -50,7 +50,6 @@ struct SpatialAssemblyModes::Impl {
   Log log;
   std::vector<SpatialInterfaceInfo> infos;
   std::vector<std::string> body_names;
-  std::vector<bool> fixed;
   std::vector<PartRed> parts;
   std::vector<RigidRed> rigid;
   std::vector<detail::InterfaceMap> map;
@@ -106,10 +105,7 @@ SpatialAssemblyModes::Impl::Impl(const structure::SpatialElasticAssembly& a, con
     : assembly(a), options(o), log(l), infos(a.interfaces()) {
   detail::check_options(options, poses.size());
   length_scale = model.characteristic_length_m > 0 ? model.characteristic_length_m : 1.0;
-  for (const spatial::Body& b : model.bodies) {
-    body_names.push_back(b.name);
-    fixed.push_back(b.fixed);
-  }
+  for (const spatial::Body& b : model.bodies) body_names.push_back(b.name);
   auto body_index = [&](const std::string& name) {
     for (size_t b = 0; b < model.bodies.size(); ++b)
       if (model.bodies[b].name == name) return int(b);

@@ -46,8 +46,8 @@
 // every fixed-interface mode up to part_mode_cutoff_hz plus its residual
 // vectors; automatic: cutoff_factor x the highest wanted frequency of the
 // static reduction over the poses given, an upper bound by Rayleigh-Ritz).
-// Each part is reduced on its own factorization of the assembly's
-// 3-2-1-supported model (SpatialElasticAssembly::supported_model: the
+// Each part is reduced on its own direct (CHOLMOD) factorization of the
+// assembly's 3-2-1-supported model (SpatialElasticAssembly::supported_model: the
 // assembly frees its factors after its set-up), made when the part's
 // reduction needs it and freed after (one factor at a time with a given
 // cutoff; with the automatic one, every part's K, M and constraint modes are
