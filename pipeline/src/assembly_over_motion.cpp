@@ -24,7 +24,9 @@ using detail::world_position;
 
 namespace {
 
-constexpr size_t kPosesPerBlock = 32;  // fields of one block in memory at a time
+// Poses per call of the assembly's solve, and written ones among them (their
+// full fields are in memory together; the others carry none).
+constexpr size_t kPosesPerBlock = 256, kWrittenPerBlock = 32;
 
 int body_index(const mech::MultibodyModel& model, const std::string& name) {
   for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -39,9 +41,11 @@ Eigen::Vector2d in_plane_eigenvalues(const Eigen::Matrix3d& C) {
   return {eig.eigenvalues()(1), eig.eigenvalues()(0)};
 }
 
-struct BodyEnvelope {
-  Eigen::VectorXd max_u, max_vm, max_p;  // max_p: pins in contact only
-  post::IndexMatrix step_u, step_vm, step_p;
+// A part's contact pressure envelope (pins in contact only; the assembly
+// folds the displacement and von Mises envelopes, MotionFields).
+struct PressureEnvelope {
+  Eigen::VectorXd max_p;
+  post::IndexMatrix step_p;
 };
 
 // Whether a pin is in contact with a bore of the part.
@@ -62,10 +66,12 @@ struct AssemblyRecorder {
   size_t T = 0;  // output times
   size_t P = 0;  // tracked points
 
-  // Per part: its assembly body's writer, nodal envelopes and multibody body index.
+  // Per part: its assembly body's writer, contact pressure envelope and
+  // multibody body index; the fields' envelopes and which poses get fields.
   std::vector<post::BodyWriter*> bodies;
-  std::vector<BodyEnvelope> envelopes;
+  std::vector<PressureEnvelope> envelopes;
   std::vector<int> part_body;
+  MotionFields fields;
 
   // Histories, filled pose by pose.
   post::FieldMatrix max_u;
@@ -117,9 +123,7 @@ struct AssemblyRecorder {
       w.begin_series(series);
       bodies.push_back(&w);
       const fem::Index N = mesh.node_count();
-      envelopes[p] = {Eigen::VectorXd::Constant(N, -1.0), Eigen::VectorXd::Constant(N, -1.0),
-                      Eigen::VectorXd::Constant(has_pins_in_contact(parts[p]) ? N : 0, -1.0),
-                      post::IndexMatrix::Zero(N, 1), post::IndexMatrix::Zero(N, 1),
+      envelopes[p] = {Eigen::VectorXd::Constant(has_pins_in_contact(parts[p]) ? N : 0, -1.0),
                       post::IndexMatrix::Zero(has_pins_in_contact(parts[p]) ? N : 0, 1)};
       part_body[p] = body_index(model, parts[p].body());
       summary.parts.push_back({parts[p].body(), 0.0, 0.0});
@@ -214,14 +218,16 @@ struct AssemblyRecorder {
     }
   }
 
-  // The parts' fields at output time k (where field_steps asks for them), their envelopes and largest von Mises.
+  // The parts' fields at output time k (where field_steps asks for them; the
+  // assembly solved the others without them), their contact pressure
+  // envelope and largest von Mises.
   void record_part_fields(const PoseSolution& pose, size_t k, const mech::Frame& frame) {
     for (size_t p = 0; p < parts.size(); ++p) {
       const PartField& field = pose.part(parts[p].body());
-      const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
       const bool contact = has_pins_in_contact(parts[p]);
       const post::FieldMatrix pressure = contact ? nodal_contact_pressure(pose, p) : post::FieldMatrix();
       if (options.field_steps.empty() || options.field_steps.at(k)) {
+        const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
         const post::FieldMatrix position = world_position(parts[p].model.mesh, frame.bodies[size_t(part_body[p])]);
         if (contact)
           bodies[p]->write_step(frame.t, {{post::layout::kPosition, position},
@@ -235,15 +241,10 @@ struct AssemblyRecorder {
                                           {post::layout::kDisplacementMagnitude, magnitude},
                                           {post::layout::kVonMises, field.von_mises_pa}});
       }
-      BodyEnvelope& e = envelopes[p];
+      PressureEnvelope& e = envelopes[p];
       for (Eigen::Index i = 0; i < e.max_p.size(); ++i)
         if (pressure(i, 0) > e.max_p(i)) e.max_p(i) = pressure(i, 0), e.step_p(i, 0) = fem::Index(k);
-#pragma omp parallel for schedule(static)
-      for (Eigen::Index i = 0; i < magnitude.size(); ++i) {
-        if (magnitude(i) > e.max_u(i)) e.max_u(i) = magnitude(i), e.step_u(i, 0) = fem::Index(k);
-        if (field.von_mises_pa(i) > e.max_vm(i)) e.max_vm(i) = field.von_mises_pa(i), e.step_vm(i, 0) = fem::Index(k);
-      }
-      summary.parts[p].max_von_mises_pa = std::max(summary.parts[p].max_von_mises_pa, field.von_mises_pa.maxCoeff());
+      summary.parts[p].max_von_mises_pa = std::max(summary.parts[p].max_von_mises_pa, field.max_von_mises_pa);
       if (stress_histories) record_part_stress(field, (*stress_histories)[p], k);
     }
   }
@@ -367,9 +368,11 @@ struct AssemblyRecorder {
     if (!options.field_steps.empty())
       for (const auto& frame : motion) step_times.push_back(frame.t);
     for (size_t p = 0; p < parts.size(); ++p) {
-      bodies[p]->write_envelope(post::layout::kDisplacementMagnitude, "m", envelopes[p].max_u, envelopes[p].step_u, post::layout::kEnvelopeMax,
-                                step_times);
-      bodies[p]->write_envelope(post::layout::kVonMises, "Pa", envelopes[p].max_vm, envelopes[p].step_vm, post::layout::kEnvelopeMax, step_times);
+      const PartEnvelope& e = fields.envelopes.at(p);
+      bodies[p]->write_envelope(post::layout::kDisplacementMagnitude, "m", e.max_displacement_m,
+                                e.displacement_step.cast<fem::Index>(), post::layout::kEnvelopeMax, step_times);
+      bodies[p]->write_envelope(post::layout::kVonMises, "Pa", e.max_von_mises_pa, e.von_mises_step.cast<fem::Index>(),
+                                post::layout::kEnvelopeMax, step_times);
       if (envelopes[p].max_p.size() > 0)
         bodies[p]->write_envelope(post::layout::kContactPressure, "Pa", envelopes[p].max_p, envelopes[p].step_p,
                                   post::layout::kEnvelopeMax, step_times);
@@ -455,16 +458,27 @@ struct AssemblyRecorder {
   }
 };
 
-// Solves the motion's poses in blocks of kPosesPerBlock and records each;
+// Solves the motion's poses in blocks (kPosesPerBlock, kWrittenPerBlock) and records each;
 // the summary takes the indeterminacy of the first pose.
 void solve_motion_in_blocks(ElasticAssembly& assembly, const std::vector<mech::Frame>& motion, const Log& log,
                             AssemblyRecorder& recorder) {
   const size_t T = motion.size();
   Progress progress(log, "  elastic assembly: output times", long(T));
-  for (size_t first = 0; first < T; first += kPosesPerBlock) {
-    const size_t count = std::min(kPosesPerBlock, T - first);
+  const std::vector<bool>& field_steps = recorder.options.field_steps;
+  for (size_t first = 0, count = 0; first < T; first += count) {
+    size_t written = 0;
+    for (count = 0; first + count < T && count < kPosesPerBlock; ++count) {
+      const bool write = field_steps.empty() || field_steps[first + count];
+      if (write && written == kWrittenPerBlock) break;
+      written += write ? 1 : 0;
+    }
     const std::vector<mech::Frame> block(motion.begin() + long(first), motion.begin() + long(first + count));
-    const std::vector<PoseSolution> poses = assembly.solve(block);
+    MotionFields& fields = recorder.fields;
+    fields.first_step = first;
+    fields.write.clear();
+    if (!field_steps.empty())
+      fields.write.assign(field_steps.begin() + long(first), field_steps.begin() + long(first + count));
+    const std::vector<PoseSolution> poses = assembly.solve(block, fields);
     if (first == 0) recorder.summary.indeterminacy = poses.front().indeterminacy;
     for (size_t f = 0; f < count; ++f) recorder.record(poses[f], first + f, motion[first + f]);
     progress.advance(long(first + count));

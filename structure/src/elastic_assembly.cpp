@@ -17,6 +17,7 @@
 #include "kinetofem/loads/slide_stations.hpp"
 #include "kinetofem/mechanisms/multibody/chain_geometry.hpp"
 #include "kinetofem/mechanisms/multibody/system.hpp"
+#include "kinetofem/solver/blas_threads.hpp"
 #include "kinetofem/solver/couplings.hpp"
 #include "kinetofem/solver/rigid_body.hpp"
 #include "kinetofem/solver/dense_product.hpp"
@@ -33,6 +34,11 @@ using detail::solve_columns;
 using detail::transfer;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
+
+// Poses per block of ElasticAssembly::solve when every part's fields are
+// formed over chunks of nodes (MotionFields): the chunks' copies of the
+// pattern rows are shared by the block's poses.
+constexpr size_t kChunkedPosesPerBlock = 256;
 
 Eigen::Matrix3d rot_z(double theta) { return Eigen::AngleAxisd(theta, Vector3d::UnitZ()).toRotationMatrix(); }
 
@@ -573,9 +579,27 @@ struct ElasticAssembly::Impl {
   // The parts' fields of a block of solved poses: u = Z_G lambda + Z_f +
   // rigid, von Mises from S_G lambda + S_p c (superposed) or recovered, as
   // block products over the poses (not one matrix-vector product per pose).
+  // With `motion` (the block's first frame is frame `first` of the solve()
+  // call): every pose folded into its envelopes, full fields only where
+  // written; a part in_chunks by add_chunked_fields.
   void add_fields(std::vector<PoseSolution>& poses, const std::vector<mech::Frame>& frames,
                   const std::vector<FieldInputs>& inputs, const std::vector<Eigen::MatrixXd>& load_displacement,
-                  const std::vector<Eigen::MatrixXd>& coefficients);
+                  const std::vector<Eigen::MatrixXd>& coefficients, MotionFields* motion, size_t first);
+  // Whether a part's fields over a motion are formed over chunks of nodes:
+  // its loads superposed, its stress from patterns (no pin in contact).
+  bool in_chunks(const PartData& part, const MotionFields* motion) const {
+    return motion && options.recover_stress && part.superposed && part.contact_bores.empty();
+  }
+  // One such part's fields of a block: per chunk of nodes (the chunks on the
+  // cores), its rows of [Z_p Z_G; S_p S_G] times [c; lambda] in tiles that
+  // stay in cache, then the rigid motion, world axes, magnitude and von
+  // Mises stress of the chunk's nodes at once, folded into the envelope;
+  // written poses' fields copied out.
+  void add_chunked_fields(PartData& part, size_t p, std::vector<PoseSolution>& poses,
+                          const std::vector<mech::Frame>& frames, const std::vector<FieldInputs>& inputs,
+                          const Eigen::MatrixXd& lambda, const Eigen::MatrixXd& coefficients, MotionFields& motion,
+                          size_t first);
+  std::vector<PoseSolution> solve_frames(const std::vector<mech::Frame>& frames, MotionFields* motion);
   void set_up_load_patterns(PartData& part);
   void solve_interface_columns(PartData& part);
   void set_up_part(PartData& part);
@@ -1454,7 +1478,8 @@ void ElasticAssembly::Impl::solve_contact_pose(const mech::Frame& frame, const P
 void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const std::vector<mech::Frame>& frames,
                                        const std::vector<FieldInputs>& inputs,
                                        const std::vector<Eigen::MatrixXd>& load_displacement,
-                                       const std::vector<Eigen::MatrixXd>& coefficients) {
+                                       const std::vector<Eigen::MatrixXd>& coefficients, MotionFields* motion,
+                                       size_t first) {
   Stopwatch clock;
   const Eigen::Index count = Eigen::Index(poses.size());
   for (size_t p = 0; p < parts.size(); ++p) {
@@ -1463,6 +1488,10 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
     const fem::Index N = mesh.node_count();
     Eigen::MatrixXd lambda(part.ZG.cols(), count);
     for (Eigen::Index f = 0; f < count; ++f) lambda.col(f) = inputs[size_t(f)].lambda_body[p];
+    if (in_chunks(part, motion)) {
+      add_chunked_fields(part, p, poses, frames, inputs, lambda, coefficients[p], *motion, first);
+      continue;
+    }
     Eigen::MatrixXd elastic = load_displacement[p];
     fem::blas_product(part.ZG, lambda, elastic, 1.0);
     const bool contact = !part.contact_bores.empty();
@@ -1507,9 +1536,25 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
         if (options.keep_part_stress)
           field.stress_pa = Eigen::Map<const Eigen::VectorXd>(recovered.stress_pa.data(), recovered.stress_pa.size());
       }
+      if (field.von_mises_pa.size() > 0) field.max_von_mises_pa = field.von_mises_pa.maxCoeff();
       if (options.keep_part_stress && stress_from_patterns) {
         field.stress_coefficients.resize(lambda.rows() + coefficients[p].rows());
         field.stress_coefficients << lambda.col(f), coefficients[p].col(f);
+      }
+      if (motion) {  // the envelope from the full fields; kept where written
+        PartEnvelope& e = motion->envelopes[p];
+        const int step = int(motion->first_step + first + size_t(f));
+        const Eigen::VectorXd magnitude = field.displacement_m.rowwise().norm();
+        for (Eigen::Index i = 0; i < N; ++i)
+          if (magnitude(i) > e.max_displacement_m(i))
+            e.max_displacement_m(i) = magnitude(i), e.displacement_step(i) = step;
+        for (Eigen::Index i = 0; i < e.max_von_mises_pa.size(); ++i)
+          if (field.von_mises_pa(i) > e.max_von_mises_pa(i))
+            e.max_von_mises_pa(i) = field.von_mises_pa(i), e.von_mises_step(i) = step;
+        if (!motion->write.empty() && !motion->write[first + size_t(f)]) {
+          field.displacement_m.resize(0, 3);
+          field.von_mises_pa.resize(0);
+        }
       }
       PoseSolution& out = poses[size_t(f)];
       if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
@@ -1520,6 +1565,154 @@ void ElasticAssembly::Impl::add_fields(std::vector<PoseSolution>& poses, const s
     }
   }
   stats.recovery_seconds += clock.seconds();
+}
+
+namespace {
+
+// Nodes per chunk and poses per tile of add_chunked_fields: a chunk's
+// pattern rows (9 x 1024 x the patterns and interface columns, 3 to 6 MB) and
+// its tile (9 x 1024 x 128, 9.4 MB) stay in the last-level cache.
+constexpr Eigen::Index kChunkNodes = 1024, kTilePoses = 128;
+
+// Rows c, c + stride, ... of a node-major field matrix's chunk (nodes i0 ..
+// i0 + n - 1, `stride` components a node) as n contiguous rows.
+void copy_component_rows(const Eigen::MatrixXd& field, int stride, int c, Eigen::Index i0, Eigen::Index n,
+                         Eigen::Ref<Eigen::MatrixXd> out) {
+  using Strided = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+  out = Strided(field.data() + stride * i0 + c, n, field.cols(),
+                Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(field.rows(), stride));
+}
+
+// A chunk's largest displacement magnitude (its node) and von Mises stress in one pose.
+struct ChunkPeak {
+  double displacement_m = -1.0, von_mises_pa = -1.0;
+  Eigen::Index node = 0;
+};
+
+}  // namespace
+
+void ElasticAssembly::Impl::add_chunked_fields(PartData& part, size_t p, std::vector<PoseSolution>& poses,
+                                               const std::vector<mech::Frame>& frames,
+                                               const std::vector<FieldInputs>& inputs, const Eigen::MatrixXd& lambda,
+                                               const Eigen::MatrixXd& coefficients, MotionFields& motion,
+                                               size_t first) {
+  const fem::Mesh& mesh = part.supported.mesh;
+  const fem::Index N = mesh.node_count();
+  const Eigen::Index count = lambda.cols(), chunk = std::max<Eigen::Index>(1, std::min(kChunkNodes, N));
+  const Eigen::Index mg = lambda.rows(), mp = coefficients.rows(), K = mp + mg;
+  const Eigen::Index chunks = (N + chunk - 1) / chunk, tile = std::min(kTilePoses, count);
+  PartEnvelope& env = motion.envelopes[p];
+  const size_t poses_here = size_t(count);
+  std::vector<Eigen::Matrix3d> R(poses_here);
+  std::vector<PartField> fields(poses_here);
+  std::vector<char> write(poses_here);
+  for (Eigen::Index f = 0; f < count; ++f) {
+    R[size_t(f)] = rot_z(frames[size_t(f)].bodies[size_t(part.body_index)].q.z());
+    PartField& field = fields[size_t(f)];
+    field.body = part.body;
+    write[size_t(f)] = motion.write.empty() || motion.write[first + size_t(f)];
+    if (write[size_t(f)]) {
+      field.displacement_m.resize(N, 3);
+      field.von_mises_pa.resize(N);
+    }
+  }
+  // The coefficients of the stacked pattern columns [Z_p Z_G; S_p S_G].
+  Eigen::MatrixXd C(K, count);
+  C.topRows(mp) = coefficients;
+  C.bottomRows(mg) = lambda;
+  std::vector<ChunkPeak> peaks(size_t(chunks * count));  // chunk-major
+  // The chunks on the cores, each with its own one-thread products: a team
+  // of threads between multi-threaded BLAS calls spins against the BLAS's
+  // own threads. A chunk's nodes are its own in the envelope and the fields.
+  fem::BlasThreadLimit one_thread_each(1);
+#pragma omp parallel
+  {
+    // The chunk's rows component-major (its n x rows, then its n y rows,
+    // ..., then its six stress components), so that the tile's components
+    // are contiguous and the arithmetic below vectorizes; copied once a
+    // block of poses, a small share of the products.
+    Eigen::MatrixXd A(9 * chunk, K), T(9 * chunk, tile);
+    Eigen::ArrayXd X(chunk), Y(chunk), Z(chunk), bx(chunk), by(chunk), bz(chunk), wx(chunk), wy(chunk), wz(chunk),
+        magnitude(chunk), vm(chunk);
+#pragma omp for schedule(dynamic)
+    for (Eigen::Index ci = 0; ci < chunks; ++ci) {
+      const Eigen::Index i0 = ci * chunk, n = std::min(chunk, N - i0);
+      for (int c = 0; c < 3; ++c) {
+        copy_component_rows(part.Zp, 3, c, i0, n, A.block(c * n, 0, n, mp));
+        copy_component_rows(part.ZG, 3, c, i0, n, A.block(c * n, mp, n, mg));
+      }
+      for (int c = 0; c < 6; ++c) {
+        copy_component_rows(part.Sp, 6, c, i0, n, A.block((3 + c) * n, 0, n, mp));
+        copy_component_rows(part.SG, 6, c, i0, n, A.block((3 + c) * n, mp, n, mg));
+      }
+      X.head(n) = mesh.nodes.col(0).segment(i0, n).array();
+      Y.head(n) = mesh.nodes.col(1).segment(i0, n).array();
+      Z.head(n) = mesh.nodes.col(2).segment(i0, n).array();
+      for (Eigen::Index f0 = 0; f0 < count; f0 += tile) {
+        const Eigen::Index fn = std::min(tile, count - f0);
+        auto Tt = T.topLeftCorner(9 * n, fn);
+        fem::blas_product(A.topRows(9 * n), C.middleCols(f0, fn), Tt);
+        for (Eigen::Index f = f0; f < f0 + fn; ++f) {
+          const Vector3d& t = inputs[size_t(f)].translation[p];
+          const Vector3d& w = inputs[size_t(f)].rotation[p];
+          const Eigen::Matrix3d& Rf = R[size_t(f)];
+          const auto uc = [&](int c) { return Tt.col(f - f0).segment(c * n, n).array(); };
+          const auto sc = [&](int c) { return Tt.col(f - f0).segment((3 + c) * n, n).array(); };
+          // Body axes: elastic + t + w x X; then world axes.
+          bx.head(n) = (uc(0) + t.x()) + (w.y() * Z.head(n) - w.z() * Y.head(n));
+          by.head(n) = (uc(1) + t.y()) + (w.z() * X.head(n) - w.x() * Z.head(n));
+          bz.head(n) = (uc(2) + t.z()) + (w.x() * Y.head(n) - w.y() * X.head(n));
+          wx.head(n) = Rf(0, 0) * bx.head(n) + Rf(0, 1) * by.head(n) + Rf(0, 2) * bz.head(n);
+          wy.head(n) = Rf(1, 0) * bx.head(n) + Rf(1, 1) * by.head(n) + Rf(1, 2) * bz.head(n);
+          wz.head(n) = Rf(2, 0) * bx.head(n) + Rf(2, 1) * by.head(n) + Rf(2, 2) * bz.head(n);
+          magnitude.head(n) = (wx.head(n).square() + wy.head(n).square() + wz.head(n).square()).sqrt();
+          // fem::von_mises, on the chunk's nodes at once.
+          vm.head(n) = (0.5 * ((sc(0) - sc(1)).square() + (sc(1) - sc(2)).square() + (sc(2) - sc(0)).square()) +
+                        3.0 * (sc(3).square() + sc(4).square() + sc(5).square()))
+                           .sqrt();
+          const int step = int(motion.first_step + first + size_t(f));
+          for (Eigen::Index j = 0; j < n; ++j) {
+            const Eigen::Index i = i0 + j;
+            if (magnitude[j] > env.max_displacement_m[i])
+              env.max_displacement_m[i] = magnitude[j], env.displacement_step[i] = step;
+            if (vm[j] > env.max_von_mises_pa[i]) env.max_von_mises_pa[i] = vm[j], env.von_mises_step[i] = step;
+          }
+          ChunkPeak& peak = peaks[size_t(ci * count + f)];
+          peak.displacement_m = magnitude.head(n).maxCoeff(&peak.node);
+          peak.node += i0;
+          peak.von_mises_pa = vm.head(n).maxCoeff();
+          if (write[size_t(f)]) {
+            PartField& field = fields[size_t(f)];
+            field.displacement_m.col(0).segment(i0, n) = wx.head(n).matrix();
+            field.displacement_m.col(1).segment(i0, n) = wy.head(n).matrix();
+            field.displacement_m.col(2).segment(i0, n) = wz.head(n).matrix();
+            field.von_mises_pa.segment(i0, n) = vm.head(n).matrix();
+          }
+        }
+      }
+    }
+  }
+  for (Eigen::Index f = 0; f < count; ++f) {
+    PartField& field = fields[size_t(f)];
+    // The pose's largest values, chunks in node order (the first node on ties).
+    field.max_displacement_m = field.max_von_mises_pa = -1.0;
+    for (Eigen::Index ci = 0; ci < chunks; ++ci) {
+      const ChunkPeak& peak = peaks[size_t(ci * count + f)];
+      if (peak.displacement_m > field.max_displacement_m)
+        field.max_displacement_m = peak.displacement_m, field.max_displacement_node = peak.node;
+      field.max_von_mises_pa = std::max(field.max_von_mises_pa, peak.von_mises_pa);
+    }
+    if (options.keep_part_stress) {
+      field.stress_coefficients.resize(mg + mp);
+      field.stress_coefficients << lambda.col(f), coefficients.col(f);
+    }
+    PoseSolution& out = poses[size_t(f)];
+    if (field.max_displacement_m > out.max_displacement_m || out.max_displacement_body.empty()) {
+      out.max_displacement_m = field.max_displacement_m;
+      out.max_displacement_body = field.body;
+    }
+    out.parts.push_back(std::move(field));
+  }
 }
 
 void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
@@ -2269,12 +2462,42 @@ PoseSolution ElasticAssembly::solve(const mech::Frame& frame) {
 }
 
 std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>& frames) {
-  Impl& im = *impl_;
+  return impl_->solve_frames(frames, nullptr);
+}
+
+std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>& frames, MotionFields& fields) {
+  require(fields.write.empty() || fields.write.size() == frames.size(), "elastic assembly: {} write flags for {} poses",
+          fields.write.size(), frames.size());
+  return impl_->solve_frames(frames, &fields);
+}
+
+std::vector<PoseSolution> ElasticAssembly::Impl::solve_frames(const std::vector<mech::Frame>& frames,
+                                                              MotionFields* motion) {
+  Impl& im = *this;
   require(!frames.empty(), "elastic assembly: no poses to solve");
   im.require_set_up();
+  if (motion && motion->envelopes.size() != im.parts.size()) {
+    motion->envelopes.assign(im.parts.size(), PartEnvelope{});
+    for (size_t p = 0; p < im.parts.size(); ++p) {
+      PartEnvelope& e = motion->envelopes[p];
+      const fem::Index N = im.parts[p]->supported.mesh.node_count();
+      const fem::Index V = im.options.recover_stress ? N : 0;
+      e.body = im.parts[p]->body;
+      e.max_displacement_m = Eigen::VectorXd::Constant(N, -1.0);
+      e.displacement_step = Eigen::VectorXi::Zero(N);
+      e.max_von_mises_pa = Eigen::VectorXd::Constant(V, -1.0);
+      e.von_mises_step = Eigen::VectorXi::Zero(V);
+    }
+  }
   std::vector<PoseSolution> out;
   out.reserve(frames.size());
-  const size_t block = 32;
+  // Poses per block: a block's load fields (3N each) of the parts not done
+  // in chunks are in memory at once; parts done in chunks have none, and
+  // longer blocks share their chunks' copies among more poses.
+  const bool all_in_chunks = std::all_of(im.parts.begin(), im.parts.end(), [&](const std::unique_ptr<PartData>& part) {
+    return im.in_chunks(*part, motion);
+  });
+  const size_t block = all_in_chunks ? kChunkedPosesPerBlock : 32;
   for (size_t first = 0; first < frames.size(); first += block) {
     const size_t count = std::min(block, frames.size() - first);
     Stopwatch clock;
@@ -2336,7 +2559,9 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
       }
       im.stats.loads_seconds += clock.seconds();
       clock.restart();
-      if (part.superposed) {
+      if (im.in_chunks(part, motion)) {
+        // Z_p c is formed chunk by chunk with the fields (add_chunked_fields).
+      } else if (part.superposed) {
         load_displacement[p].resize(part.Zp.rows(), Fl.cols());
         fem::blas_product(part.Zp, Fl, load_displacement[p]);  // Fl: the coefficients
       } else {
@@ -2390,7 +2615,7 @@ std::vector<PoseSolution> ElasticAssembly::solve(const std::vector<mech::Frame>&
         for (size_t f = 0; f < count; ++f) block_coefficients[p].col(Eigen::Index(f)) = coefficients[f][p];
       }
     const std::vector<mech::Frame> block_frames(frames.begin() + long(first), frames.begin() + long(first + count));
-    im.add_fields(block_poses, block_frames, inputs, load_displacement, block_coefficients);
+    im.add_fields(block_poses, block_frames, inputs, load_displacement, block_coefficients, motion, first);
     for (auto& pose : block_poses) out.push_back(std::move(pose));
   }
   im.stats.unknowns = out.back().unknowns;

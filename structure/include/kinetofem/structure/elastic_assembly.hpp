@@ -289,8 +289,11 @@ struct ContactRecord {
 
 struct PartField {
   std::string body;
-  fem::DisplacementField displacement_m;  // N x 3, world axes, from the rigid configuration
-  Eigen::VectorXd von_mises_pa;           // N (empty unless recover_stress)
+  // N x 3, world axes, from the rigid configuration; N (empty unless
+  // recover_stress). Both empty for a pose that ElasticAssembly::solve with
+  // MotionFields does not write: the scalars below and the envelope hold it.
+  fem::DisplacementField displacement_m;
+  Eigen::VectorXd von_mises_pa;
   // AssemblyOptions::keep_part_stress (else empty): the nodal stress tensor
   // (Pa, body axes, node-major Voigt as fem::StressField, 6N) is
   // ElasticAssembly::stress_patterns(body) * stress_coefficients when the
@@ -298,6 +301,32 @@ struct PartField {
   Eigen::VectorXd stress_coefficients, stress_pa;
   double max_displacement_m = 0.0;
   fem::Index max_displacement_node = 0;
+  double max_von_mises_pa = 0.0;  // over the nodes (recover_stress)
+};
+
+// Per elastic part, over the poses of a motion: each node's largest
+// displacement magnitude (world axes, from the rigid configuration, m) and
+// von Mises stress (Pa; empty unless recover_stress), with the motion's step
+// of each maximum (the first pose on ties). -1 before any pose.
+struct PartEnvelope {
+  std::string body;
+  Eigen::VectorXd max_displacement_m, max_von_mises_pa;  // N
+  Eigen::VectorXi displacement_step, von_mises_step;     // N, steps of the motion
+};
+
+// How ElasticAssembly::solve forms the parts' fields over a motion solved in
+// calls of consecutive frames: every pose folds into `envelopes`, and only
+// the poses with `write` set get PartField::displacement_m and von_mises_pa;
+// the others carry PartField's scalars. A part whose loads are superposed
+// (and has no pin in contact) is then done over chunks of nodes in cache:
+// the pattern products, the rigid motion, the von Mises stress, the
+// magnitude and the envelope together, without the full fields of every
+// pose in memory (those cost several times their arithmetic at many output
+// times). The others fold their full fields.
+struct MotionFields {
+  std::vector<bool> write;              // per frame of the next solve() call; empty: every frame
+  size_t first_step = 0;                // the motion's step of that call's first frame
+  std::vector<PartEnvelope> envelopes;  // per part in the order given; sized by the first call
 };
 
 // What a joint applies on each of its bodies (world axes; moments about the
@@ -522,6 +551,9 @@ class ElasticAssembly {
   // slack chain, or a part's loads that disagree with its multibody body.
   PoseSolution solve(const mech::Frame& frame);
   std::vector<PoseSolution> solve(const std::vector<mech::Frame>& frames);
+  // The same poses, their fields as `fields` says (MotionFields); Error when
+  // `write` is neither empty nor one flag per frame.
+  std::vector<PoseSolution> solve(const std::vector<mech::Frame>& frames, MotionFields& fields);
 
   std::vector<InterfaceInfo> interfaces() const;
   // The pose's constraints and springs (InterfaceStructure); throws Error
