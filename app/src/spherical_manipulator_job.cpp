@@ -65,6 +65,8 @@ const std::vector<KeySpec>& spherical_manipulator_schema() {
       {.path = "parts.arm_diameter_ratio", .type = Type::Number, .default_number = rules.arm_diameter_ratio, .min = 0.3, .max = 0.85, .doc = "the arm's outer diameter D3 over the sleeve's d2 (a design choice the SPEC leaves open)"},
       {.path = "parts.guide_length_ratio", .type = Type::Number, .default_number = rules.guide_length_ratio, .min = 0.25, .max = 2.0, .doc = "each guide land's length l_g over the arm's diameter D3"},
       {.path = "parts.assembly", .type = Type::Boolean, .default_number = 1, .doc = "with the parts: the column, sleeve and arm as one elastic structure held by the ground at every output time (the spatial elastic assembly): M's positioning error over the motion, its compliance and each part's share"},
+      {.path = "parts.vibration", .type = Type::Boolean, .default_number = 0, .doc = "with the assembly: the natural frequencies of the three parts as one structure frozen in each pose (one Craig-Bampton reduction per part, docs/vibration.md; minutes: the arm's slide stations are all boundary coordinates)"},
+      {.path = "parts.vibration_modes", .type = Type::Integer, .default_number = 6, .min = 1, .max = 100, .doc = "natural frequencies per pose"},
       {.path = "parts.pin_diameter_ratio", .type = Type::Number, .default_number = rules.pin_diameter_ratio, .min = 0.1, .max = 0.5, .doc = "the tilt pin's (and trunnion journals') diameter over the sleeve's d2"},
     });
     const std::vector<KeySpec> material = material_keys(), mesh = part_mesh_keys(), stress = motion_solver_keys(),
@@ -232,9 +234,15 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
                                 std::string(mech::spatial::spherical_names::arm),
                                 std::string(mech::spatial::spherical_names::point_m), "gripper_mount"}};
     assembly_options.solver = read_solver_options(c);
+    std::optional<vibration::AssemblyModesOptions> modes;
+    if (c.boolean("parts.vibration")) {
+      modes.emplace();
+      modes->modes = int(c.integer("parts.vibration_modes"));
+    }
     try {
       assembly = pipeline::analyse_spatial_assembly_over_motion(parts->parts, spatial_model, spatial.frames, w,
-                                                                assembly_options, {}, log, factors->lent());
+                                                                assembly_options, {}, log, factors->lent(),
+                                                                modes ? &*modes : nullptr);
     } catch (const Error& e) {
       fail("{}: {}", c.path().string(), e.what());
     }
@@ -320,6 +328,15 @@ MechanismCaseSummary run_spherical_manipulator(const CaseFile& c, const RunOptio
                              share.displacement_m.dot(ps.displacement_at_max_m.normalized()) / kMm);
       std::printf("    its split along the error there: %s\n", split.c_str());
       summary.values.push_back({"M_error_mm", ps.max_displacement_m / kMm});
+    }
+    if (assembly->vibration) {
+      const pipeline::SpatialAssemblySummary::Vibration& v = *assembly->vibration;
+      std::printf("  natural frequencies (the structure frozen in each pose; %d modes): first %.3f Hz at t = %.4f s to "
+                  "%.3f Hz at t = %.4f s; at the start %s Hz\n",
+                  v.modes, v.lowest_first_hz, v.lowest_first_time_s, v.highest_first_hz, v.highest_first_time_s,
+                  fmt::format("{:.2f}", fmt::join(v.frequency_hz.row(0), ", ")).c_str());
+      std::printf("    %s\n", v.rule.c_str());
+      summary.values.push_back({"first_frequency_min_hz", v.lowest_first_hz});
     }
   }
   std::printf("  results: %s (+ .xdmf)\n", summary.results_file.string().c_str());

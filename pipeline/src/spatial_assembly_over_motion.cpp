@@ -9,6 +9,7 @@
 #include "kinetofem/core/units.hpp"
 #include "kinetofem/pipeline/part_model.hpp"  // write_solid_field
 #include "kinetofem/postproc/results_layout.hpp"
+#include "kinetofem/vibration/spatial_assembly_modes.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -22,13 +23,11 @@ int body_index(const mech::spatial::Model& model, const std::string& name) {
 
 }  // namespace
 
-SpatialAssemblySummary analyse_spatial_assembly_over_motion(const std::vector<structure::SpatialPart>& parts,
-                                                            const mech::spatial::Model& model,
-                                                            const std::vector<mech::spatial::Frame>& motion,
-                                                            post::ResultsWriter& writer,
-                                                            const structure::SpatialAssemblyOptions& options,
-                                                            const std::vector<bool>& field_steps, const Log& log,
-                                                            const std::vector<fem::LinearStaticAnalysis*>& factorized) {
+SpatialAssemblySummary analyse_spatial_assembly_over_motion(
+    const std::vector<structure::SpatialPart>& parts, const mech::spatial::Model& model,
+    const std::vector<mech::spatial::Frame>& motion, post::ResultsWriter& writer,
+    const structure::SpatialAssemblyOptions& options, const std::vector<bool>& field_steps, const Log& log,
+    const std::vector<fem::LinearStaticAnalysis*>& factorized, const vibration::AssemblyModesOptions* vibration) {
   require(!motion.empty(), "spatial elastic assembly: no output times");
   require(field_steps.empty() || field_steps.size() == motion.size(),
           "spatial elastic assembly: the field output mask has {} entries for {} output times", field_steps.size(),
@@ -68,7 +67,8 @@ SpatialAssemblySummary analyse_spatial_assembly_over_motion(const std::vector<st
   Eigen::MatrixXd max_u(T, 1);
   std::vector<Eigen::MatrixXd> point_u(P, Eigen::MatrixXd(T, 3)), point_mag(P, Eigen::MatrixXd(T, 1)),
       point_rot(P, Eigen::MatrixXd(T, 3)), point_compliance(P, Eigen::MatrixXd(T, 9));
-  std::vector<std::vector<Eigen::MatrixXd>> point_from(P, std::vector<Eigen::MatrixXd>(np, Eigen::MatrixXd(T, 3)));
+  std::vector<std::vector<Eigen::MatrixXd>> point_from(P);  // per point: per contributor (parts, chains), T x 3
+  std::vector<std::vector<std::string>> point_from_names(P);
   for (size_t i = 0; i < P; ++i) {
     PointSummary ps;
     ps.name = options.points[i].name;
@@ -132,7 +132,14 @@ SpatialAssemblySummary analyse_spatial_assembly_over_motion(const std::vector<st
       point_rot[i].row(r) = pr.rotation_rad.transpose();
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) point_compliance[i](r, 3 * a + b) = pr.compliance_m_per_n(a, b);
-      for (size_t c = 0; c < pr.contributions.size() && c < np; ++c)
+      if (k == 0)
+        for (const structure::PointContribution& share : pr.contributions) {
+          point_from[i].push_back(Eigen::MatrixXd(T, 3));
+          point_from_names[i].push_back(share.name);
+        }
+      require(pr.contributions.size() == point_from[i].size(),
+              "spatial elastic assembly at t = {:.6g} s: point '{}': the contributors changed", frame.t, pr.name);
+      for (size_t c = 0; c < pr.contributions.size(); ++c)
         point_from[i][c].row(r) = pr.contributions[c].displacement_m.transpose();
       PointSummary& ps = summary.points[i];
       if (pr.displacement_m.norm() > ps.max_displacement_m || k == 0) {
@@ -179,9 +186,44 @@ SpatialAssemblySummary analyse_spatial_assembly_over_motion(const std::vector<st
     if (options.unit_load_split) {
       writer.write_history(base + ".compliance", "m/N", point_compliance[i],
                            {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"});
-      for (size_t c = 0; c < np; ++c)
-        writer.write_history(base + ".from.part." + parts[c].body(), "m", point_from[i][c], post::kVectorComponents);
+      for (size_t c = 0; c < point_from[i].size(); ++c)
+        writer.write_history(base + ".from." + point_from_names[i][c], "m", point_from[i][c], post::kVectorComponents);
     }
+  }
+  if (vibration) {
+    Stopwatch watch;
+    log.info("spatial vibration: Craig-Bampton reduction of {} parts, {} modes per pose", np, vibration->modes);
+    const vibration::SpatialAssemblyModes modes(assembly, model, *vibration, motion, log);
+    SpatialAssemblySummary::Vibration v;
+    v.modes = vibration->modes;
+    v.frequency_hz.resize(Eigen::Index(T), vibration->modes);
+    Progress progress_modes(log, "spatial vibration", long(T));
+    for (size_t k = 0; k < T; ++k) {
+      const vibration::PoseModes pose = modes.modes(motion[k]);
+      require(pose.frequency_hz.allFinite() && pose.frequency_hz.size() == vibration->modes,
+              "spatial vibration at t = {:.6g} s: the frequencies are not finite", motion[k].t);
+      v.frequency_hz.row(Eigen::Index(k)) = pose.frequency_hz.transpose();
+      const double first = pose.frequency_hz(0);
+      if (k == 0 || first < v.lowest_first_hz) {
+        v.lowest_first_hz = first;
+        v.lowest_first_time_s = motion[k].t;
+      }
+      if (k == 0 || first > v.highest_first_hz) {
+        v.highest_first_hz = first;
+        v.highest_first_time_s = motion[k].t;
+      }
+      progress_modes.advance(long(k + 1));
+    }
+    progress_modes.finish();
+    v.reductions = modes.reductions();
+    v.rule = modes.check_rule(v.frequency_hz.maxCoeff());
+    v.seconds = watch.seconds();
+    std::vector<std::string> names;
+    for (int i = 0; i < v.modes; ++i) names.push_back(fmt::format("mode_{}", i + 1));
+    writer.write_history("vibration.frequency", "Hz", v.frequency_hz, names);
+    log.info("spatial vibration: first natural frequency {:.3f}-{:.3f} Hz over the motion; {}; {:.2f} s",
+             v.lowest_first_hz, v.highest_first_hz, v.rule, v.seconds);
+    summary.vibration = std::move(v);
   }
   log.info(
       "spatial elastic assembly: set-up {:.2f} s, {} poses {:.2f} s; max displacement {:.4f} mm in '{}' at "

@@ -14,9 +14,14 @@
 //     displacement_magnitude and von_mises (max over the motion);
 //   histories assembly.max_displacement (m), and per tracked point P
 //     assembly.point.<P>.displacement, .displacement_magnitude, .rotation,
-//     .compliance (m/N, xx ... zz), .from.part.<b> (m: the parts' shares,
-//     they add up to the displacement).
+//     .compliance (m/N, xx ... zz), .from.part.<b> and .from.chain.<c> (m:
+//     the shares, they add up to the displacement);
+//   with the vibration (vibration/spatial_assembly_modes.hpp: one
+//   Craig-Bampton reduction per part, one small eigenproblem per pose):
+//     history vibration.frequency (T x m, Hz, mode_1..mode_m), the natural
+//     frequencies of the structure frozen in each pose.
 // The writer's mechanism time must be the output times of `motion`.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +31,7 @@
 #include "kinetofem/pipeline/assembly_over_motion.hpp"  // PointSummary
 #include "kinetofem/postproc/results_writer.hpp"
 #include "kinetofem/structure/spatial_elastic_assembly.hpp"
+#include "kinetofem/vibration/assembly_modes.hpp"
 
 namespace kinetofem::pipeline {
 
@@ -42,16 +48,29 @@ struct SpatialAssemblySummary {
   std::vector<PartPeak> parts;
   double setup_seconds = 0.0, poses_seconds = 0.0;
   double worst_relative_residual = 0.0;  // of the poses' dense systems
+  // The natural frequencies per pose (with the vibration).
+  struct Vibration {
+    int modes = 0;
+    Eigen::MatrixXd frequency_hz;  // T x modes
+    double lowest_first_hz = 0.0, lowest_first_time_s = 0.0;
+    double highest_first_hz = 0.0, highest_first_time_s = 0.0;
+    std::vector<vibration::PartReduction> reductions;
+    std::string rule;  // the part-mode rule's check (SpatialAssemblyModes::check_rule)
+    double seconds = 0.0;
+  };
+  std::optional<Vibration> vibration;
 };
 
 // `field_steps`: the output times whose fields are written (empty: all).
 // `factorized`: the parts' factorizations lent (SpatialPartFactors), or empty.
+// `vibration` (optional): the natural frequencies per pose too.
 // Throws Error naming the part, joint, drive or time
 // (spatial_elastic_assembly.hpp), or a result that is not finite.
 SpatialAssemblySummary analyse_spatial_assembly_over_motion(
     const std::vector<structure::SpatialPart>& parts, const mech::spatial::Model& model,
     const std::vector<mech::spatial::Frame>& motion, post::ResultsWriter& writer,
     const structure::SpatialAssemblyOptions& options, const std::vector<bool>& field_steps, const Log& log,
-    const std::vector<fem::LinearStaticAnalysis*>& factorized = {});
+    const std::vector<fem::LinearStaticAnalysis*>& factorized = {},
+    const vibration::AssemblyModesOptions* vibration = nullptr);
 
 }  // namespace kinetofem::pipeline
