@@ -2,6 +2,7 @@
 
 #include "kinetofem/structure/rigid_bore.hpp"
 #include "kinetofem/structure/rigid_motion.hpp"
+#include "condensation_tools.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -1717,7 +1718,6 @@ void ElasticAssembly::Impl::add_chunked_fields(PartData& part, size_t p, std::ve
 
 void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
   const fem::Mesh& mesh = part.supported.mesh;
-  const fem::Index N = mesh.node_count();
   const Eigen::MatrixXd P = part.loads->pattern_forces();
   part.Rp.resize(6, P.cols());
   for (Eigen::Index k = 0; k < P.cols(); ++k) {
@@ -1730,17 +1730,8 @@ void ElasticAssembly::Impl::set_up_load_patterns(PartData& part) {
   part.GtZp = part.G.transpose() * part.Zp;
   if (options.recover_stress) {
     const fem::ElementMaterials materials = fem::element_materials(part.supported);
-    auto stresses = [&](const Eigen::MatrixXd& Z) {
-      Eigen::MatrixXd S(6 * N, Z.cols());
-      for (Eigen::Index k = 0; k < Z.cols(); ++k) {
-        const fem::DisplacementField u = Eigen::Map<const fem::DisplacementField>(Z.col(k).data(), N, 3);
-        S.col(k) = Eigen::Map<const Eigen::VectorXd>(
-            fem::recover_nodal_stress(mesh, materials, u).stress_pa.data(), 6 * N);
-      }
-      return S;
-    };
-    part.SG = stresses(part.ZG);
-    part.Sp = stresses(part.Zp);
+    part.SG = detail::nodal_stress_columns(mesh, materials, part.ZG);
+    part.Sp = detail::nodal_stress_columns(mesh, materials, part.Zp);
   }
   part.superposed = true;
 }
@@ -1914,30 +1905,6 @@ Eigen::RowVectorXd ElasticAssembly::Impl::drive_row(const DriveData& dd, const P
   return g;
 }
 
-namespace {
-
-// Ruiz equilibration of As (at most 30 sweeps, until every row and column
-// maximum is within 1e-3 of 1); Dr and Dc take on the row and column scalings.
-void ruiz_equilibrate(Eigen::MatrixXd& As, Eigen::VectorXd& Dr, Eigen::VectorXd& Dc) {
-  const Eigen::Index n = As.rows();
-  for (int it = 0; it < 30; ++it) {
-    const Eigen::VectorXd rmax = As.cwiseAbs().rowwise().maxCoeff(),
-                          cmax = As.cwiseAbs().colwise().maxCoeff().transpose();
-    double worst = 0.0;
-    Eigen::VectorXd sr(n), sc(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      sr(i) = rmax(i) > 0 ? 1.0 / std::sqrt(rmax(i)) : 1.0;
-      sc(i) = cmax(i) > 0 ? 1.0 / std::sqrt(cmax(i)) : 1.0;
-      worst = std::max({worst, std::abs(1.0 - rmax(i)), std::abs(1.0 - cmax(i))});
-    }
-    if (worst < 1e-3) break;
-    As = sr.asDiagonal() * As * sc.asDiagonal();
-    Dr = Dr.cwiseProduct(sr);
-    Dc = Dc.cwiseProduct(sc);
-  }
-}
-
-}  // namespace
 
 ElasticAssembly::Impl::PoseLayout ElasticAssembly::Impl::layout_of(const PoseMembers& members) const {
   PoseLayout at;
@@ -2048,7 +2015,7 @@ ElasticAssembly::Impl::PoseUnknowns ElasticAssembly::Impl::solve_equilibrated(co
   Eigen::MatrixXd As = eq.cwiseInverse().asDiagonal() * system.A * var.asDiagonal();
   solved.Dr = eq.cwiseInverse();
   solved.Dc = var;
-  ruiz_equilibrate(As, solved.Dr, solved.Dc);
+  detail::ruiz_equilibrate(As, solved.Dr, solved.Dc);
   const Eigen::VectorXd bs = solved.Dr.cwiseProduct(system.rhs);
   solved.lu.compute(As);
   solved.lu.setThreshold(options.rank_tolerance);
