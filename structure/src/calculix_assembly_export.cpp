@@ -123,22 +123,22 @@ void write_terms(std::FILE* out, const Terms& terms, Dof pivot) {
 
 }  // namespace
 
-AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const std::vector<Part>& parts,
-                                          const mech::MultibodyModel& model, const mech::Frame& frame,
-                                          const std::filesystem::path& path, const AssemblyDeckOptions& options) {
-  const std::vector<InterfaceInfo> interfaces = assembly.interfaces();
-  const InterfaceStructure structure = assembly.interface_structure(frame);
+AssemblyDeck write_calculix_pose_deck(const PoseDeckStructure& pose, const std::filesystem::path& path,
+                                      const AssemblyDeckOptions& options) {
+  const std::vector<PoseDeckPart>& parts = pose.parts;
+  const std::vector<PoseDeckInterface>& interfaces = pose.interfaces;
   const size_t M = interfaces.size();
-  auto body_index = [&](const std::string& name) {
-    for (size_t b = 0; b < model.bodies.size(); ++b)
-      if (model.bodies[b].name == name) return b;
-    fail("CalculiX deck {}: the mechanism '{}' has no body '{}'", path.string(), model.name, name);
-  };
-  require(frame.bodies.size() == model.bodies.size(), "CalculiX deck {}: the frame has {} bodies, the mechanism {}",
-          path.string(), frame.bodies.size(), model.bodies.size());
-  auto origin_of = [&](size_t b) {
-    return Vector3d(frame.bodies[b].q.x(), frame.bodies[b].q.y(), 0.0);
-  };
+  for (const PoseDeckPart& part : parts)
+    require(part.model != nullptr, "CalculiX deck {}: {} has no model", path.string(), part.name);
+  require(pose.constraints.rows() == 0 || pose.constraints.cols() == Eigen::Index(6 * M),
+          "CalculiX deck {}: {} constraint columns for {} interfaces", path.string(), pose.constraints.cols(), M);
+  require(size_t(pose.constraints.rows()) == pose.constraint_owner.size(),
+          "CalculiX deck {}: {} constraint rows, {} owners", path.string(), pose.constraints.rows(),
+          pose.constraint_owner.size());
+  const Eigen::Index n6 = Eigen::Index(6 * M);
+  require(pose.springs.size() == 0 || (pose.springs.rows() == n6 && pose.springs.cols() == n6),
+          "CalculiX deck {}: a springs' matrix of {} x {} for {} interfaces", path.string(), pose.springs.rows(),
+          pose.springs.cols(), M);
 
   AssemblyDeck deck;
   Eliminator relations(options.drop_tolerance);
@@ -148,16 +148,15 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   // Numbering: the parts' nodes, then per interface a translation and a
   // rotation node, then per moving rigid body with interfaces its pair.
   long long next_node = 1, next_element = 1;
-  for (const Part& part : parts) {
+  for (const PoseDeckPart& part : parts) {
     AssemblyDeckPart p;
-    p.body = part.body();
-    const size_t b = body_index(p.body);
-    p.rotation = structure.body_rotation[b];
-    p.origin_m = origin_of(b);
+    p.body = part.body;
+    p.rotation = part.rotation;
+    p.origin_m = part.origin_m;
     p.first_node = next_node;
-    p.nodes = part.model.mesh.node_count();
+    p.nodes = part.model->mesh.node_count();
     p.first_element = next_element;
-    p.elements = part.model.mesh.element_count();
+    p.elements = part.model->mesh.element_count();
     next_node += p.nodes;
     next_element += p.elements;
     deck.parts.push_back(p);
@@ -171,70 +170,63 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   auto interface_dof = [&](size_t k, int c) {
     return c < 3 ? dof_of(deck.translation_node[k], c) : dof_of(deck.rotation_node[k], c - 3);
   };
-  std::vector<long long> body_node(model.bodies.size(), 0);  // translation node; rotation = +1
-  for (const InterfaceInfo& i : interfaces) {
-    const size_t b = body_index(i.body);
-    if (!i.elastic && body_node[b] == 0) {
-      require(!model.bodies[b].fixed, "CalculiX deck {}: interface '{}' on the rigid ground", path.string(), i.name);
-      body_node[b] = next_node;
+  std::vector<long long> body_node(pose.rigid_bodies.size(), 0);  // translation node; rotation = +1
+  for (const PoseDeckInterface& i : interfaces) {
+    if (i.part >= 0) {
+      require(size_t(i.part) < parts.size() && i.column >= 0, "CalculiX deck {}: {}: no part {} (of {}), column {}",
+              path.string(), i.tie_owner, i.part, parts.size(), i.column);
+      continue;
+    }
+    require(i.rigid_body >= 0 && size_t(i.rigid_body) < pose.rigid_bodies.size(),
+            "CalculiX deck {}: {}: neither on a part nor on a rigid body", path.string(), i.tie_owner);
+    if (body_node[size_t(i.rigid_body)] == 0) {
+      body_node[size_t(i.rigid_body)] = next_node;
       next_node += 2;
     }
   }
 
   // The parts: foundations held, loads rotated to world axes, and the ties of
   // their interfaces.
-  const auto part_of = [&](const std::string& body) -> int {
-    for (size_t p = 0; p < parts.size(); ++p)
-      if (parts[p].body() == body) return int(p);
-    return -1;
-  };
   for (size_t p = 0; p < parts.size(); ++p) {
-    const Part& part = parts[p];
+    const PoseDeckPart& part = parts[p];
     const AssemblyDeckPart& dp = deck.parts[p];
-    if (model.bodies[body_index(part.body())].fixed)
-      for (const fem::DisplacementSupport& s : foundation_support(part))
-        for (fem::Index n : s.nodes)
-          for (int c = 0; c < 3; ++c) fixed.insert(dof_of(dp.first_node + n, c));
-    const Eigen::VectorXd f = assembly.part_loads(part.body()).loads_at(frame).forces;
+    for (fem::Index n : part.held_nodes)
+      for (int c = 0; c < 3; ++c) fixed.insert(dof_of(dp.first_node + n, c));
+    const Eigen::VectorXd& f = part.nodal_loads_n;
     require(f.size() == 3 * dp.nodes,
             "CalculiX deck {}: {} is not the part the assembly was built with ({} nodes, its loads {})", path.string(),
-            part.name(), dp.nodes, f.size() / 3);
+            part.name, dp.nodes, f.size() / 3);
     for (fem::Index n = 0; n < dp.nodes; ++n) {
       const Vector3d fw = dp.rotation * f.segment<3>(3 * n);
       for (int c = 0; c < 3; ++c)
         if (fw(c) != 0.0) load[dof_of(dp.first_node + n, c)] += fw(c);
     }
   }
-  std::map<std::string, int> local_count;
   for (size_t k = 0; k < M; ++k) {
-    const InterfaceInfo& i = interfaces[k];
-    const std::string owner = "the tie of " + i.kind + " '" + i.name + "' on '" + i.body + "'";
-    if (!i.elastic) {
-      const size_t b = body_index(i.body);
-      const detail::Matrix6d T = detail::transfer(structure.interface_arm_m[k]);
+    const PoseDeckInterface& i = interfaces[k];
+    const std::string& owner = i.tie_owner;
+    if (i.part < 0) {
+      const long long node = body_node[size_t(i.rigid_body)];
+      const detail::Matrix6d T = detail::transfer(i.arm_m);
       for (int c = 0; c < 6; ++c) {
         Terms row;
         row[interface_dof(k, c)] = 1.0;
         for (int a = 0; a < 6; ++a)
-          if (T(c, a) != 0.0) row[a < 3 ? dof_of(body_node[b], a) : dof_of(body_node[b] + 1, a - 3)] -= T(c, a);
+          if (T(c, a) != 0.0) row[a < 3 ? dof_of(node, a) : dof_of(node + 1, a - 3)] -= T(c, a);
         relations.add(std::move(row), interface_dof(k, c), owner);
       }
       continue;
     }
-    const int p = part_of(i.body);
-    require(p >= 0, "CalculiX deck {}: interface '{}' is on body '{}', whose part was not given", path.string(),
-            i.name, i.body);
-    const AssemblyDeckPart& dp = deck.parts[size_t(p)];
-    const Eigen::MatrixXd* columns = nullptr;
-    try {
-      columns = &assembly.interface_columns(i.body);
-    } catch (const Error& e) {
-      fail("CalculiX deck {} (written with the distributing couplings' equations only): {}", path.string(), e.what());
-    }
-    const Eigen::MatrixXd& G = *columns;
-    require(G.rows() == 3 * dp.nodes, "CalculiX deck {}: {} is not the part the assembly was built with",
-            path.string(), parts[size_t(p)].name());
-    const int local = local_count[i.body]++;
+    const PoseDeckPart& part = parts[size_t(i.part)];
+    const AssemblyDeckPart& dp = deck.parts[size_t(i.part)];
+    require(part.interface_columns != nullptr, "CalculiX deck {}: {}: {} has no interface columns", path.string(),
+            owner, part.name);
+    const Eigen::MatrixXd& G = *part.interface_columns;
+    require(G.rows() == 3 * dp.nodes, "CalculiX deck {}: {} is not the part the assembly was built with", path.string(),
+            part.name);
+    require(G.cols() >= 6 * Eigen::Index(i.column + 1), "CalculiX deck {}: {}: column {} of {} interfaces on {}",
+            path.string(), owner, i.column, G.cols() / 6, part.name);
+    const int local = i.column;
     const Matrix3d& R = dp.rotation;
     for (int c = 0; c < 6; ++c) {
       // Row c of Q6 G_k^T Q^T: per node row c of R g_t R^T (translation) or R g_r R^T (rotation).
@@ -256,13 +248,13 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   }
 
   // The joints and rigid drives: C u = 0 over the interfaces' motions.
-  const Eigen::MatrixXd& C = structure.constraints;
+  const Eigen::MatrixXd& C = pose.constraints;
   for (Eigen::Index r = 0; r < C.rows(); ++r) {
     Terms row;
     for (size_t k = 0; k < M; ++k)
       for (int c = 0; c < 6; ++c)
         if (C(r, Eigen::Index(6 * k + c)) != 0.0) row[interface_dof(k, c)] += C(r, Eigen::Index(6 * k + c));
-    relations.add(std::move(row), -1, structure.constraint_owner[size_t(r)]);
+    relations.add(std::move(row), -1, pose.constraint_owner[size_t(r)]);
   }
 
   // The springs: S = sum lambda v v^T, one SPRING1 per term on its own node.
@@ -271,8 +263,8 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
     double stiffness = 0.0;
   };
   std::vector<Spring> springs;
-  if (structure.springs.size() > 0 && !structure.springs.isZero(0.0)) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(structure.springs);
+  if (pose.springs.size() > 0 && !pose.springs.isZero(0.0)) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(pose.springs);
     require(eigen.info() == Eigen::Success, "CalculiX deck {}: the springs' eigenvalues failed", path.string());
     const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
     for (Eigen::Index e = 0; e < eigen.eigenvalues().size(); ++e) {
@@ -294,16 +286,11 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   }
 
   // Moving rigid bodies' loads at their node pair.
-  {
-    const std::vector<Vector6d> body_loads = assembly.body_loads(frame);
-    size_t moving = 0;
-    for (size_t b = 0; b < model.bodies.size(); ++b) {
-      if (model.bodies[b].fixed) continue;
-      const Vector6d& l = body_loads.at(moving++);
-      if (body_node[b] == 0) continue;
-      for (int c = 0; c < 6; ++c)
-        if (l(c) != 0.0) load[c < 3 ? dof_of(body_node[b], c) : dof_of(body_node[b] + 1, c - 3)] += l(c);
-    }
+  for (size_t b = 0; b < pose.rigid_bodies.size(); ++b) {
+    const Vector6d& l = pose.rigid_bodies[b].load;
+    if (body_node[b] == 0) continue;
+    for (int c = 0; c < 6; ++c)
+      if (l(c) != 0.0) load[c < 3 ? dof_of(body_node[b], c) : dof_of(body_node[b] + 1, c - 3)] += l(c);
   }
   // Loads on dependent DoFs moved onto their equation's independent DoFs
   // (pivot = -sum a_e u_e: a force F on it does the work of -a_e F on each u_e).
@@ -328,20 +315,18 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   };
   for (size_t p = 0; p < parts.size(); ++p) {
     const AssemblyDeckPart& dp = deck.parts[p];
-    const fem::Mesh& mesh = parts[p].model.mesh;
+    const fem::Mesh& mesh = parts[p].model->mesh;
     for (fem::Index n = 0; n < dp.nodes; ++n)
       put_node(dp.first_node + n, dp.origin_m + dp.rotation * mesh.nodes.row(n).transpose());
   }
   for (size_t k = 0; k < M; ++k) {
-    const size_t b = body_index(interfaces[k].body);
-    const Vector3d x = origin_of(b) + structure.interface_arm_m[k];
-    put_node(deck.translation_node[k], x);
-    put_node(deck.rotation_node[k], x);
+    put_node(deck.translation_node[k], interfaces[k].position_m);
+    put_node(deck.rotation_node[k], interfaces[k].position_m);
   }
-  for (size_t b = 0; b < model.bodies.size(); ++b)
+  for (size_t b = 0; b < pose.rigid_bodies.size(); ++b)
     if (body_node[b] != 0) {
-      put_node(body_node[b], origin_of(b));
-      put_node(body_node[b] + 1, origin_of(b));
+      put_node(body_node[b], pose.rigid_bodies[b].origin_m);
+      put_node(body_node[b] + 1, pose.rigid_bodies[b].origin_m);
     }
   for (const Spring& s : springs) put_node(s.node, Vector3d::Zero());
   deck.node_count = next_node - 1;
@@ -349,12 +334,12 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   // Elements (ccx node order) and their materials.
   std::vector<std::string> sections;  // "ELSET, MATERIAL" pairs
   for (size_t p = 0; p < parts.size(); ++p) {
-    const fem::FeModel& fe = parts[p].model;
+    const fem::FeModel& fe = *parts[p].model;
     fem::ElementMaterials materials = fem::IsotropicMaterial{};
     try {
       materials = fem::element_materials(fe);
     } catch (const Error& e) {
-      fail("CalculiX deck {}: {}: {}", path.string(), parts[p].name(), e.what());
+      fail("CalculiX deck {}: {}: {}", path.string(), parts[p].name, e.what());
     }
     long long element_id = deck.parts[p].first_element;
     fem::Index global = 0;
@@ -388,7 +373,7 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
       const std::string whose = k == 0 ? std::string("its elements in no listed set")
                                        : "element set '" + materials.element_set(size_t(k)) + "'";
       std::fprintf(out, "** %s: material '%s' of %s\n*MATERIAL, NAME=P%zuM%d\n*ELASTIC\n%.12e, %.12e\n",
-                   parts[p].name().c_str(), m.name.c_str(), whose.c_str(), p + 1, k, m.youngs_modulus_pa,
+                   parts[p].name.c_str(), m.name.c_str(), whose.c_str(), p + 1, k, m.youngs_modulus_pa,
                    m.poisson_ratio);
     }
   }
@@ -447,6 +432,172 @@ AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const
   require(std::ferror(out) == 0, "error writing CalculiX deck {}", path.string());
   require(std::fclose(file.release()) == 0, "error closing CalculiX deck {}", path.string());
   return deck;
+}
+
+namespace {
+
+// The moving bodies in `is_rigid` order (model order) as the deck's rigid
+// bodies: their index per model body (-1: none).
+template <class IsRigid>
+std::vector<int> rigid_body_indices(size_t bodies, IsRigid is_rigid) {
+  std::vector<int> index(bodies, -1);
+  int next = 0;
+  for (size_t b = 0; b < bodies; ++b)
+    if (is_rigid(b)) index[b] = next++;
+  return index;
+}
+
+}  // namespace
+
+AssemblyDeck write_calculix_assembly_deck(const ElasticAssembly& assembly, const std::vector<Part>& parts,
+                                          const mech::MultibodyModel& model, const mech::Frame& frame,
+                                          const std::filesystem::path& path, const AssemblyDeckOptions& options) {
+  const std::vector<InterfaceInfo> interfaces = assembly.interfaces();
+  InterfaceStructure structure = assembly.interface_structure(frame);
+  auto body_index = [&](const std::string& name) {
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == name) return b;
+    fail("CalculiX deck {}: the mechanism '{}' has no body '{}'", path.string(), model.name, name);
+  };
+  require(frame.bodies.size() == model.bodies.size(), "CalculiX deck {}: the frame has {} bodies, the mechanism {}",
+          path.string(), frame.bodies.size(), model.bodies.size());
+  auto origin_of = [&](size_t b) { return Vector3d(frame.bodies[b].q.x(), frame.bodies[b].q.y(), 0.0); };
+  const auto part_of = [&](const std::string& body) -> int {
+    for (size_t p = 0; p < parts.size(); ++p)
+      if (parts[p].body() == body) return int(p);
+    return -1;
+  };
+
+  PoseDeckStructure pose;
+  for (const Part& part : parts) {
+    const size_t b = body_index(part.body());
+    PoseDeckPart p;
+    p.name = part.name();
+    p.body = part.body();
+    p.model = &part.model;
+    p.rotation = structure.body_rotation[b];
+    p.origin_m = origin_of(b);
+    if (model.bodies[b].fixed)
+      for (const fem::DisplacementSupport& s : foundation_support(part))
+        p.held_nodes.insert(p.held_nodes.end(), s.nodes.begin(), s.nodes.end());
+    p.nodal_loads_n = assembly.part_loads(part.body()).loads_at(frame).forces;
+    pose.parts.push_back(std::move(p));
+  }
+  // Rigid bodies: the moving bodies whose interfaces are not on a part.
+  std::vector<bool> rigid(model.bodies.size(), false);
+  for (const InterfaceInfo& i : interfaces)
+    if (!i.elastic) {
+      const size_t b = body_index(i.body);
+      require(!model.bodies[b].fixed, "CalculiX deck {}: interface '{}' on the rigid ground", path.string(), i.name);
+      rigid[b] = true;
+    }
+  const std::vector<int> rigid_index = rigid_body_indices(model.bodies.size(), [&](size_t b) { return rigid[b]; });
+  {
+    const std::vector<Vector6d> body_loads = assembly.body_loads(frame);
+    size_t moving = 0;
+    for (size_t b = 0; b < model.bodies.size(); ++b) {
+      if (model.bodies[b].fixed) continue;
+      const Vector6d& l = body_loads.at(moving++);
+      if (rigid_index[b] >= 0) pose.rigid_bodies.push_back({model.bodies[b].name, origin_of(b), l});
+    }
+  }
+  std::map<std::string, int> local_count;
+  for (size_t k = 0; k < interfaces.size(); ++k) {
+    const InterfaceInfo& i = interfaces[k];
+    const size_t b = body_index(i.body);
+    PoseDeckInterface d;
+    d.tie_owner = "the tie of " + i.kind + " '" + i.name + "' on '" + i.body + "'";
+    d.arm_m = structure.interface_arm_m[k];
+    d.position_m = origin_of(b) + structure.interface_arm_m[k];
+    if (!i.elastic) {
+      d.rigid_body = rigid_index[b];
+    } else {
+      d.part = part_of(i.body);
+      require(d.part >= 0, "CalculiX deck {}: interface '{}' is on body '{}', whose part was not given", path.string(),
+              i.name, i.body);
+      d.column = local_count[i.body]++;
+      PoseDeckPart& p = pose.parts[size_t(d.part)];
+      if (p.interface_columns == nullptr) {
+        try {
+          p.interface_columns = &assembly.interface_columns(i.body);
+        } catch (const Error& e) {
+          fail("CalculiX deck {} (written with the distributing couplings' equations only): {}", path.string(),
+               e.what());
+        }
+      }
+    }
+    pose.interfaces.push_back(std::move(d));
+  }
+  pose.constraints = std::move(structure.constraints);
+  pose.constraint_owner = std::move(structure.constraint_owner);
+  pose.springs = std::move(structure.springs);
+  return write_calculix_pose_deck(pose, path, options);
+}
+
+AssemblyDeck write_calculix_assembly_deck(const SpatialElasticAssembly& assembly, const mech::spatial::Model& model,
+                                          const mech::spatial::Frame& frame, const std::filesystem::path& path,
+                                          const AssemblyDeckOptions& options) {
+  require(frame.bodies.size() == model.bodies.size(), "CalculiX deck {}: the frame has {} bodies, the mechanism {}",
+          path.string(), frame.bodies.size(), model.bodies.size());
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    require(frame.bodies[b].name == model.bodies[b].name,
+            "CalculiX deck {}: the frame is of another mechanism (body '{}', the mechanism's '{}')", path.string(),
+            frame.bodies[b].name, model.bodies[b].name);
+  const std::vector<SpatialInterfaceInfo> interfaces = assembly.interfaces();
+  InterfaceStructure structure = assembly.interface_structure(frame);
+  auto body_index = [&](const std::string& name) {
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == name) return b;
+    fail("CalculiX deck {}: the mechanism '{}' has no body '{}'", path.string(), model.name, name);
+  };
+
+  PoseDeckStructure pose;
+  std::vector<int> part_of_body(model.bodies.size(), -1);
+  for (const SpatialPart& part : assembly.parts()) {
+    const size_t b = body_index(part.body());
+    part_of_body[b] = int(pose.parts.size());
+    PoseDeckPart p;
+    p.name = part.label.empty() ? "part '" + part.body() + "'" : part.label;
+    p.body = part.body();
+    p.model = &assembly.supported_model(part.body());
+    p.rotation = frame.bodies[b].rotation;
+    p.origin_m = frame.bodies[b].origin;
+    p.nodal_loads_n = assembly.part_loads(part.body(), frame);
+    p.interface_columns = &assembly.interface_columns(part.body());
+    pose.parts.push_back(std::move(p));
+  }
+  const std::vector<int> rigid_index =
+      rigid_body_indices(model.bodies.size(), [&](size_t b) { return !model.bodies[b].fixed && part_of_body[b] < 0; });
+  {
+    const std::vector<Vector6d> body_loads = assembly.body_loads(frame);
+    size_t moving = 0;
+    for (size_t b = 0; b < model.bodies.size(); ++b) {
+      if (model.bodies[b].fixed) continue;
+      const Vector6d& l = body_loads.at(moving++);
+      if (rigid_index[b] >= 0) pose.rigid_bodies.push_back({model.bodies[b].name, frame.bodies[b].origin, l});
+    }
+  }
+  std::vector<int> local_count(model.bodies.size(), 0);
+  for (size_t k = 0; k < interfaces.size(); ++k) {
+    const SpatialInterfaceInfo& i = interfaces[k];
+    const size_t b = body_index(i.body);
+    require(!model.bodies[b].fixed, "CalculiX deck {}: {} on the ground", path.string(), i.name);
+    PoseDeckInterface d;
+    d.tie_owner = "the tie of " + i.name + " on '" + i.body + "'";
+    d.arm_m = structure.interface_arm_m[k];
+    d.position_m = frame.bodies[b].origin + structure.interface_arm_m[k];
+    if (part_of_body[b] >= 0) {
+      d.part = part_of_body[b];
+      d.column = local_count[b]++;
+    } else {
+      d.rigid_body = rigid_index[b];
+    }
+    pose.interfaces.push_back(std::move(d));
+  }
+  pose.constraints = std::move(structure.constraints);
+  pose.constraint_owner = std::move(structure.constraint_owner);
+  pose.springs = std::move(structure.springs);
+  return write_calculix_pose_deck(pose, path, options);
 }
 
 AssemblyDeckResults read_calculix_assembly_results(const AssemblyDeck& deck, const std::filesystem::path& job) {

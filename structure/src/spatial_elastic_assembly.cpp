@@ -927,6 +927,8 @@ InterfaceStructure SpatialElasticAssembly::interface_structure(const spatial::Fr
   for (size_t r = 0; r < rows.C.size(); ++r) out.constraints.row(Eigen::Index(r)) = rows.C[r];
   out.constraint_owner = rows.owner;
   out.springs = Eigen::MatrixXd::Zero(n, n);
+  for (size_t sp = 0; sp < rows.spring_g.size(); ++sp)
+    out.springs.noalias() += rows.spring_k[sp] * rows.spring_g[sp].transpose() * rows.spring_g[sp];
   return out;
 }
 
@@ -942,6 +944,22 @@ const fem::FeModel& SpatialElasticAssembly::supported_model(const std::string& b
   for (const auto& part : impl_->parts)
     if (part->body == body) return part->supported;
   fail("spatial elastic assembly: body '{}' has no elastic part", body);
+}
+
+const Eigen::MatrixXd& SpatialElasticAssembly::interface_columns(const std::string& body) const {
+  for (const auto& part : impl_->parts)
+    if (part->body == body) return part->G;
+  fail("spatial elastic assembly: body '{}' has no elastic part", body);
+}
+
+Eigen::VectorXd SpatialElasticAssembly::part_loads(const std::string& body, const spatial::Frame& frame) const {
+  for (const auto& part : impl_->parts)
+    if (part->body == body) return part->loads->loads_at(frame);
+  fail("spatial elastic assembly: body '{}' has no elastic part", body);
+}
+
+std::vector<Vector6d> SpatialElasticAssembly::body_loads(const spatial::Frame& frame) const {
+  return impl_->body_loads(frame);
 }
 
 double SpatialElasticAssembly::setup_seconds() const { return impl_->setup_seconds; }

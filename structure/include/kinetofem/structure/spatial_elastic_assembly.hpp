@@ -168,10 +168,13 @@ class SpatialElasticAssembly {
   std::vector<SpatialPoseSolution> solve(const std::vector<mech::spatial::Frame>& frames);
 
   std::vector<SpatialInterfaceInfo> interfaces() const;
-  // The pose's constraints (InterfaceStructure of elastic_assembly.hpp, over
-  // interfaces(); no springs: every tie and drive is rigid here), what the
-  // modes of the assembly need. Throws Error like solve() for a frame of
-  // another mechanism or a slide beyond its stroke.
+  // The pose's constraints and springs (InterfaceStructure of
+  // elastic_assembly.hpp, over interfaces()): the joints', slides' and
+  // drives' rows (every one rigid) and the chains' springs, S = sum k g^T g
+  // (g: the chain's elongation per interface motion, k = EA / free length;
+  // the modes of the assembly use the rows alone). Throws Error like solve()
+  // for a frame of another mechanism, a slide beyond its stroke or a chain
+  // whose hinge lies within its roller.
   InterfaceStructure interface_structure(const mech::spatial::Frame& frame) const;
   // The point masses each part carries and their mount face sets
   // (attachments.point_masses), and the rigid bodies: for the modes.
@@ -181,6 +184,19 @@ class SpatialElasticAssembly {
   const Eigen::MatrixXd& flexibility(const std::string& body) const;
   // The part's 3-2-1-supported model (what its mesh, support and fields refer to).
   const fem::FeModel& supported_model(const std::string& body) const;
+  // What a pose's CalculiX deck needs (calculix_assembly_export.hpp), the
+  // part of `body` (Error if it has none): its interface columns G (3N x 6m,
+  // body axes, interfaces() order of the body's interfaces; the reference
+  // point's motion is G^T u, a load [F; M] at it enters the nodes as
+  // G [F; M]) and its nodal loads in the pose (3N, N, body axes: inertia,
+  // weight, point masses and forces; the joints', drives' and slides' loads
+  // are the interfaces'), what solve() applies.
+  const Eigen::MatrixXd& interface_columns(const std::string& body) const;
+  Eigen::VectorXd part_loads(const std::string& body, const mech::spatial::Frame& frame) const;
+  // Per moving body (model order, the ground skipped): the multibody frame's
+  // applied minus inertia loads, world axes, force N and moment N m about the
+  // body's origin (a rigid body's loads in solve()).
+  std::vector<Vector6d> body_loads(const mech::spatial::Frame& frame) const;
   double setup_seconds() const;
 
  private:
