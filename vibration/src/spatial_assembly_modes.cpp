@@ -94,7 +94,7 @@ struct SpatialAssemblyModes::Impl {
     require(N.cols() >= count,
             "vibration at t = {:.6g} s: the reduced assembly has {} free coordinates, fewer than the {} modes wanted",
             frame.t, N.cols(), count);
-    MatrixXd Kc = N.transpose() * K * N;
+    MatrixXd Kc = N.transpose() * (K + U.transpose() * is.springs * U) * N;  // the chains: springs
     MatrixXd Mc = N.transpose() * M * N;
     return detail::modes_on_basis(std::move(Kc), std::move(Mc), N, count, frame.t);
   }
@@ -321,7 +321,7 @@ VectorXd SpatialAssemblyModes::static_response(const spatial::Frame& frame, cons
   const InterfaceStructure is = im.assembly.interface_structure(frame);
   const MatrixXd U = im.interface_map(frame);
   const MatrixXd N = im.admissible(is, U);
-  const MatrixXd Kc = N.transpose() * im.K * N;
+  const MatrixXd Kc = N.transpose() * (im.K + U.transpose() * is.springs * U) * N;
   return N * Kc.ldlt().solve(N.transpose() * load);
 }
 

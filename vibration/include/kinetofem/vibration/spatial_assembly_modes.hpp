@@ -40,7 +40,8 @@
 // of the weight, inertia and joint loads; the gyroscopic and centrifugal
 // terms of the bodies' angular velocity (omega x J omega, Coriolis); the
 // drives' and joints' compliance (every tie is rigid here, as in the
-// assembly's statics); springs of the model (the assembly has none).
+// assembly's statics); the model's springs and dampers (the assembly's only
+// springs are its chains, U^T S U added to K as in the planar modes).
 //
 // Part-mode rule: AssemblyModesOptions, as the planar modes (each part keeps
 // every fixed-interface mode up to part_mode_cutoff_hz plus its residual
