@@ -267,7 +267,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
       file.replace_filename(file.stem().string() + ".rotary_module.h5");
       turned = pipeline::analyse_rotary_module(run.model, parts, run_case.times, *rotary, file, run_case.provenance,
                                                run_case.stress, log,
-                                               run_case.assembly ? &*run_case.assembly : nullptr);
+                                               run_case.assembly ? &*run_case.assembly : nullptr,
+                                               run_case.vibration ? &run_case.vibration->modes : nullptr);
     } catch (const Error& e) {
       fail("{}: rotary module: {}", c.path().string(), e.what());
     }
@@ -310,6 +311,12 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
                     ps.displacement_at_max_m.x() / kMm, ps.displacement_at_max_m.y() / kMm,
                     ps.displacement_at_max_m.z() / kMm, split.c_str());
       }
+    if (turned->assembly && turned->assembly->vibration) {
+      const pipeline::SpatialAssemblySummary::Vibration& v = *turned->assembly->vibration;
+      std::printf("    natural frequencies with the module (frozen in each pose): first %.3f Hz at t = %.4f s to %.3f "
+                  "Hz at t = %.4f s\n",
+                  v.lowest_first_hz, v.lowest_first_time_s, v.highest_first_hz, v.highest_first_time_s);
+    }
     std::printf("    results: %s (+ .xdmf)\n", turned->results_file.string().c_str());
   }
   std::printf("  results: %s (+ .xdmf)\n  wall time: %.2f s\n", summary.results_file.string().c_str(), summary.total_seconds);

@@ -43,7 +43,8 @@ RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, con
                                           const std::vector<double>& times, const RotaryModuleSettings& settings,
                                           const std::filesystem::path& results_file, const post::Provenance& provenance,
                                           const loads::LinkStressOptions& options, const Log& log,
-                                          const structure::AssemblyOptions* assembly) {
+                                          const structure::AssemblyOptions* assembly,
+                                          const vibration::AssemblyModesOptions* modes) {
   require(times.size() >= 2, "rotary module: fewer than two output times");
   require(settings.duration_s > 0 && std::isfinite(settings.duration_s) && settings.start_s >= 0,
           "rotary module: its turn must take a positive time from a start >= 0 (start {} s, duration {} s)",
@@ -109,8 +110,8 @@ RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, con
     for (const structure::AssemblyPoint& p : assembly->points)
       o.points.push_back({p.name, p.body, p.point, p.face_set});
     o.points.push_back({std::string(names::kCastingMass), module.name, std::string(names::kCastingMass), ""});
-    out.assembly =
-        analyse_spatial_assembly_over_motion(spatial_parts, spatial, run.frames, writer, o, {}, log, factors.lent());
+    out.assembly = analyse_spatial_assembly_over_motion(spatial_parts, spatial, run.frames, writer, o, {}, log,
+                                                        factors.lent(), modes);
   }
   for (size_t k = 0; k < spatial_parts.size(); ++k)
     out.parts.push_back(analyse_spatial_part_over_motion(spatial_parts[k], spatial, run.frames, writer, options, log,

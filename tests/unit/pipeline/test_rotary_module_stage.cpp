@@ -64,7 +64,8 @@ TEST(AnalyseRotaryModule, EveryPartBalancesOverTheStrokeAndTheTurn) {
 // (Maxwell-Betti, 1e-9); before the turn everything stays in the plane (the
 // planar linkage, |u_z| < 1e-9 |u|); once turned, the casting hangs off the
 // plane and the arm twists under its weight, so the casting moves out of the
-// plane (|u_z| > 1e-3 |u| at the end of the turn).
+// plane (|u_z| > 1e-3 |u| at the end of the turn). Its natural frequencies
+// per pose come out positive and ascending.
 TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned) {
   const mech::ManipulatorDefinition def = structure::test::lever_chain_definition();
   mech::MultibodyModel model = mech::make_manipulator_model(def);
@@ -82,8 +83,10 @@ TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned)
   assembly.points = {{"H", "arm", "H", "x0"}};
   const fs::path dir = fs::temp_directory_path() / fmt::format("kinetofem_rotary_assembly_{}", ::getpid());
   fs::create_directories(dir);
+  vibration::AssemblyModesOptions modes;
+  modes.modes = 3;
   const RotaryModuleSummary r = analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s, dir / "rotary.h5", {},
-                                                      {}, Log::quiet(), &assembly);
+                                                      {}, Log::quiet(), &assembly, &modes);
   ASSERT_TRUE(r.assembly.has_value());
   ASSERT_EQ(r.assembly->points.size(), 2u);
   for (const PointSummary& p : r.assembly->points) {
@@ -96,6 +99,15 @@ TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned)
   ASSERT_EQ(casting.rows(), 6);
   for (Eigen::Index k = 0; k < 5; ++k) EXPECT_LT(std::abs(casting(k, 2)), 1e-9 * casting.row(k).norm()) << k;
   EXPECT_GT(std::abs(casting(5, 2)), 1e-3 * casting.row(5).norm());
+  // The natural frequencies with the module, per pose: positive, ascending.
+  ASSERT_TRUE(r.assembly->vibration.has_value());
+  const Eigen::MatrixXd& f = r.assembly->vibration->frequency_hz;
+  ASSERT_EQ(f.rows(), 6);
+  for (Eigen::Index k = 0; k < f.rows(); ++k) {
+    EXPECT_GT(f(k, 0), 0.0) << k;
+    EXPECT_GE(f(k, 2), f(k, 1)) << k;
+    EXPECT_GE(f(k, 1), f(k, 0)) << k;
+  }
   fs::remove_all(dir);
 }
 

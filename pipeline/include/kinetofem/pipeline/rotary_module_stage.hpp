@@ -65,11 +65,15 @@ struct RotaryModuleSummary {
 // its chains' EA and tracked points carry over to the spatial assembly (its
 // compliant drives, pins and contact do not: an Error says so). One
 // factorization per part serves the assembly and the per-part stage.
+// `modes` (optional, with `assembly`): the natural frequencies of the
+// mechanism with its module frozen in each pose (the history
+// vibration.frequency of results_file).
 RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, const std::vector<Part>& parts,
                                           const std::vector<double>& times, const RotaryModuleSettings& settings,
                                           const std::filesystem::path& results_file,
                                           const post::Provenance& provenance,
                                           const loads::LinkStressOptions& options, const Log& log,
-                                          const structure::AssemblyOptions* assembly = nullptr);
+                                          const structure::AssemblyOptions* assembly = nullptr,
+                                          const vibration::AssemblyModesOptions* modes = nullptr);
 
 }  // namespace kinetofem::pipeline
