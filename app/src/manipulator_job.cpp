@@ -253,6 +253,21 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
     r.casting_offset_m = c.vector3("rotary_module.casting_offset_mm");
     r.casting_inertia_kgm2 = c.vector3("rotary_module.casting_inertia_kgm2").asDiagonal();
     require(!run_case.parts.empty(), "{}: the rotary module's stage needs the links as FE parts", c.where("rotary_module.enabled"));
+    // What the spatial loads and the spatial assembly do not take yet, refused
+    // before any work (the stage runs after the planar pipeline).
+    require(c.text_value("loads.bore_load") == "coupling",
+            "{} = \"{}\": with the rotary module the pins' loads enter through distributing couplings only (the "
+            "spatial loads have no bearing pressure or contact yet)",
+            c.where("loads.bore_load"), c.text_value("loads.bore_load"));
+    if (run_case.assembly) {
+      require(run_case.assembly->drives.empty(),
+              "{}: with the rotary module the spatial elastic assembly holds the drives rigidly (a compliant drive is "
+              "not taken yet): leave it out, or set assembly.enabled = false",
+              c.where("assembly.drive_stiffness_n_m_per_rad"));
+      require(run_case.assembly->coupling == structure::BoreCoupling::Distributing,
+              "{} = \"rigid_bore\": with the rotary module the spatial elastic assembly has distributing couplings only",
+              c.where("assembly.coupling"));
+    }
     rotary = r;
   }
 
