@@ -283,7 +283,8 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
       turned = pipeline::analyse_rotary_module(run.model, parts, run_case.times, *rotary, file, run_case.provenance,
                                                run_case.stress, log,
                                                run_case.assembly ? &*run_case.assembly : nullptr,
-                                               run_case.vibration ? &run_case.vibration->modes : nullptr);
+                                               run_case.vibration ? &run_case.vibration->modes : nullptr,
+                                               run_case.fatigue ? &*run_case.fatigue : nullptr);
     } catch (const Error& e) {
       fail("{}: rotary module: {}", c.path().string(), e.what());
     }
@@ -326,6 +327,11 @@ ManipulatorSummary run_manipulator(const CaseFile& c, const RunOptions& options)
                     ps.displacement_at_max_m.x() / kMm, ps.displacement_at_max_m.y() / kMm,
                     ps.displacement_at_max_m.z() / kMm, split.c_str());
       }
+    for (const pipeline::PartFatigue& f : turned->fatigue)
+      std::printf("    %-8s fatigue over the stroke and the turn: utilization %.3f, life %s (critical node %ld)\n",
+                  f.body.c_str(), f.max_utilization,
+                  std::isinf(f.min_life_s) ? "infinite" : fmt::format("{:.3g} h", f.min_life_s / 3600.0).c_str(),
+                  f.critical_node);
     if (turned->assembly && turned->assembly->vibration) {
       const pipeline::SpatialAssemblySummary::Vibration& v = *turned->assembly->vibration;
       std::printf("    natural frequencies with the module (frozen in each pose): first %.3f Hz at t = %.4f s to %.3f "

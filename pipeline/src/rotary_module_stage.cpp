@@ -44,7 +44,8 @@ RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, con
                                           const std::filesystem::path& results_file, const post::Provenance& provenance,
                                           const loads::LinkStressOptions& options, const Log& log,
                                           const structure::AssemblyOptions* assembly,
-                                          const vibration::AssemblyModesOptions* modes) {
+                                          const vibration::AssemblyModesOptions* modes,
+                                          const FatigueSettings* fatigue) {
   require(times.size() >= 2, "rotary module: fewer than two output times");
   require(settings.duration_s > 0 && std::isfinite(settings.duration_s) && settings.start_s >= 0,
           "rotary module: its turn must take a positive time from a start >= 0 (start {} s, duration {} s)",
@@ -113,9 +114,15 @@ RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, con
     out.assembly = analyse_spatial_assembly_over_motion(spatial_parts, spatial, run.frames, writer, o, {}, log,
                                                         factors.lent(), modes);
   }
-  for (size_t k = 0; k < spatial_parts.size(); ++k)
+  for (size_t k = 0; k < spatial_parts.size(); ++k) {
+    PartStressHistory history;
     out.parts.push_back(analyse_spatial_part_over_motion(spatial_parts[k], spatial, run.frames, writer, options, log,
-                                                         nullptr, &factors.of(k)));
+                                                         fatigue ? &history : nullptr, &factors.of(k)));
+    if (fatigue) {
+      out.fatigue.push_back(assess_part_fatigue(parts[k], history, *fatigue, log));
+      write_part_fatigue(writer.body(parts[k].body()), out.fatigue.back());
+    }
+  }
   writer.commit();
   out.results_file = results_file;
   return out;

@@ -4,6 +4,7 @@
 // in 0.5 s.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <unistd.h>
 
@@ -65,7 +66,7 @@ TEST(AnalyseRotaryModule, EveryPartBalancesOverTheStrokeAndTheTurn) {
 // planar linkage, |u_z| < 1e-9 |u|); once turned, the casting hangs off the
 // plane and the arm twists under its weight, so the casting moves out of the
 // plane (|u_z| > 1e-3 |u| at the end of the turn). Its natural frequencies
-// per pose come out positive and ascending.
+// per pose come out positive and ascending, and each part has its fatigue.
 TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned) {
   const mech::ManipulatorDefinition def = structure::test::lever_chain_definition();
   mech::MultibodyModel model = mech::make_manipulator_model(def);
@@ -85,8 +86,9 @@ TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned)
   fs::create_directories(dir);
   vibration::AssemblyModesOptions modes;
   modes.modes = 3;
+  const FatigueSettings fatigue;  // EN 1993-1-9 detail 71, one cycle a minute
   const RotaryModuleSummary r = analyse_rotary_module(model, parts, {0.0, 0.5, 1.0, 1.5, 2.0}, s, dir / "rotary.h5", {},
-                                                      {}, Log::quiet(), &assembly, &modes);
+                                                      {}, Log::quiet(), &assembly, &modes, &fatigue);
   ASSERT_TRUE(r.assembly.has_value());
   ASSERT_EQ(r.assembly->points.size(), 2u);
   for (const PointSummary& p : r.assembly->points) {
@@ -99,6 +101,10 @@ TEST(AnalyseRotaryModule, TheGripperDeflectsOutOfThePlaneOnceTheCastingIsTurned)
   ASSERT_EQ(casting.rows(), 6);
   for (Eigen::Index k = 0; k < 5; ++k) EXPECT_LT(std::abs(casting(k, 2)), 1e-9 * casting.row(k).norm()) << k;
   EXPECT_GT(std::abs(casting(5, 2)), 1e-3 * casting.row(5).norm());
+  // Each part's fatigue over the stroke and the turn: a utilization > 0 (the
+  // parts carry load) and finite.
+  ASSERT_EQ(r.fatigue.size(), parts.size());
+  for (const PartFatigue& f : r.fatigue) EXPECT_TRUE(f.max_utilization > 0 && std::isfinite(f.max_utilization)) << f.body;
   // The natural frequencies with the module, per pose: positive, ascending.
   ASSERT_TRUE(r.assembly->vibration.has_value());
   const Eigen::MatrixXd& f = r.assembly->vibration->frequency_hz;

@@ -26,6 +26,7 @@
 #include "kinetofem/loads/link_stress_history.hpp"
 #include "kinetofem/mechanisms/multibody/model.hpp"
 #include "kinetofem/pipeline/part_model.hpp"
+#include "kinetofem/pipeline/part_fatigue.hpp"
 #include "kinetofem/pipeline/part_stress.hpp"
 #include "kinetofem/pipeline/spatial_assembly_over_motion.hpp"
 #include "kinetofem/structure/elastic_assembly.hpp"
@@ -51,6 +52,7 @@ struct RotaryModuleSummary {
   // tracked points are the planar assembly's and "casting" (the casting's
   // centre on the turning module: the gripper's deflection).
   std::optional<SpatialAssemblySummary> assembly;
+  std::vector<PartFatigue> fatigue;  // per part, with the fatigue settings
   std::filesystem::path results_file;
 };
 
@@ -67,13 +69,16 @@ struct RotaryModuleSummary {
 // factorization per part serves the assembly and the per-part stage.
 // `modes` (optional, with `assembly`): the natural frequencies of the
 // mechanism with its module frozen in each pose (the history
-// vibration.frequency of results_file).
+// vibration.frequency of results_file). `fatigue` (optional): each part's
+// fatigue over the work cycle of the stroke and the turn (part_fatigue.hpp,
+// its fields in results_file).
 RotaryModuleSummary analyse_rotary_module(const mech::MultibodyModel& model, const std::vector<Part>& parts,
                                           const std::vector<double>& times, const RotaryModuleSettings& settings,
                                           const std::filesystem::path& results_file,
                                           const post::Provenance& provenance,
                                           const loads::LinkStressOptions& options, const Log& log,
                                           const structure::AssemblyOptions* assembly = nullptr,
-                                          const vibration::AssemblyModesOptions* modes = nullptr);
+                                          const vibration::AssemblyModesOptions* modes = nullptr,
+                                          const FatigueSettings* fatigue = nullptr);
 
 }  // namespace kinetofem::pipeline
