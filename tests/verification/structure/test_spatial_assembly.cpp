@@ -46,6 +46,7 @@
 #include <Eigen/Geometry>
 
 #include "../../unit/structure/structure_fixtures.hpp"
+#include "../../unit/structure/spatial_fixtures.hpp"
 #include "spatial_monolithic_reference.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/loads/slide_stations.hpp"
@@ -65,25 +66,13 @@ namespace {
 
 namespace sp = mech::spatial;
 using test::BarSize;
+using test::give_mass_of;
 using test::kDeg;
-
-SpatialPart bar(const std::string& body, const BarSize& size, std::vector<loads::SpatialAttachment> joints,
-                std::vector<loads::SpatialAttachment> masses = {}) {
-  SpatialPart part;
-  part.label = "part '" + body + "' (test bar)";
-  part.attachments.body = body;
-  part.attachments.joints = std::move(joints);
-  part.attachments.point_masses = std::move(masses);
-  part.model.mesh = test::bar_mesh(size);
-  part.model.material = test::steel();
-  return part;
-}
-
-void give_mass_of(sp::Model& model, const std::vector<SpatialPart>& parts) {
-  for (const SpatialPart& p : parts)
-    for (sp::Body& b : model.bodies)
-      if (b.name == p.body()) loads::assign_mass_properties(b, p.model);
-}
+using test::slide_model;
+using test::spatial_arm;
+using test::SlideModel;
+using test::SpatialArm;
+using test::spatial_bar;
 
 // --- 1. The cantilevered sliding arm -------------------------------------
 
@@ -115,7 +104,7 @@ TEST(SpatialElasticAssembly, ACantileveredSlidingArmBendsAsBeamTheorySays) {
   push.coordinate = sp::DriveCoordinate::Translation;
   push.law = std::make_shared<mech::ConstantVelocityLaw>(0.0);
   model.motion_drives = {push};
-  const std::vector<SpatialPart> parts = {bar("arm", size, {{"slide", "x0"}, {"push", "x0"}})};
+  const std::vector<SpatialPart> parts = {spatial_bar("arm", size, {{"slide", "x0"}, {"push", "x0"}})};
   give_mass_of(model, parts);
   const sp::System system(model);
   const sp::Results run = sp::run_kinematics(system, {0.0});
@@ -150,57 +139,6 @@ TEST(SpatialElasticAssembly, ACantileveredSlidingArmBendsAsBeamTheorySays) {
 
 // --- 2. A spatial two-link arm ---------------------------------------------
 
-struct SpatialArm {
-  sp::Model model;
-  std::vector<SpatialPart> parts;
-};
-
-SpatialArm spatial_arm() {
-  const BarSize link1_size{.length_m = 0.40, .height_m = 0.04, .thickness_m = 0.03, .cells = {16, 2, 2}};
-  const BarSize link2_size{.length_m = 0.30, .height_m = 0.03, .thickness_m = 0.03, .cells = {12, 2, 2}};
-  SpatialArm arm;
-  sp::Model& m = arm.model;
-  m.name = "spatial two-link arm";
-  m.characteristic_length_m = 0.7;
-  sp::Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  const Eigen::Matrix3d R1 = Eigen::AngleAxisd(30 * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d R2 = R1 * Eigen::AngleAxisd(-40 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  sp::Body link1;
-  link1.name = "link1";
-  sp::set_rotation(link1, R1);
-  link1.points["tip"] = Eigen::Vector3d(link1_size.length_m, 0, 0);
-  sp::Body link2;
-  link2.name = "link2";
-  sp::set_rotation(link2, R2);
-  link2.position = R1 * Eigen::Vector3d(link1_size.length_m, 0, 0);
-  link2.points["tip"] = Eigen::Vector3d(link2_size.length_m, 0, 0);
-  sp::PointMass payload;
-  payload.name = "payload";
-  payload.mass_kg = 3.0;
-  payload.position_body = link2.points["tip"];
-  payload.inertia_kgm2 = Eigen::Vector3d(0.01, 0.02, 0.03).asDiagonal();
-  link2.point_masses = {payload};
-  m.bodies = {ground, link1, link2};
-  m.joints = {sp::make_joint("J1", sp::JointType::Revolute, "ground", "origin", "link1", "origin",
-                             Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ()),
-              sp::make_joint("J2", sp::JointType::Revolute, "link1", "tip", "link2", "origin", Eigen::Vector3d::UnitY(),
-                             Eigen::Vector3d::UnitY())};
-  sp::MotionDrive d1;
-  d1.name = "d1";
-  d1.joint = "J1";
-  d1.law = std::make_shared<mech::Polynomial345Law>(60 * kDeg, 1.0);
-  sp::MotionDrive d2 = d1;
-  d2.name = "d2";
-  d2.joint = "J2";
-  d2.law = std::make_shared<mech::Polynomial345Law>(-50 * kDeg, 1.0);
-  m.motion_drives = {d1, d2};
-  arm.parts = {bar("link1", link1_size, {{"J1", "x0"}, {"d1", "x0"}, {"J2", "x1"}, {"d2", "x1"}}),
-               bar("link2", link2_size, {{"J2", "x0"}, {"d2", "x0"}}, {{"payload", "x1"}})};
-  give_mass_of(m, arm.parts);
-  return arm;
-}
 
 TEST(SpatialElasticAssembly, ASpatialArmEqualsTheMonolithicReferenceAndTheMultibodyReactions) {
   const SpatialArm arm = spatial_arm();
@@ -301,69 +239,6 @@ TEST(SpatialElasticAssembly, APlanarLinkageLiftedIntoTheSpatialCoreGivesThePlana
 
 // --- 4. A slide ----------------------------------------------------------------
 
-struct SlideModel {
-  sp::Model model;
-  std::vector<SpatialPart> parts;
-};
-
-SlideModel slide_model(double push_m) {
-  const BarSize sleeve_size{.length_m = 0.40, .height_m = 0.06, .thickness_m = 0.06, .cells = {16, 2, 2}};
-  const BarSize arm_size{.length_m = 0.60, .height_m = 0.03, .thickness_m = 0.03, .cells = {48, 2, 2}};
-  SlideModel out;
-  sp::Model& m = out.model;
-  m.name = "arm in a sleeve";
-  m.characteristic_length_m = 0.6;
-  const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d(0.3, -1.0, 0.2).normalized()).toRotationMatrix();
-  sp::Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  sp::Body sleeve;
-  sleeve.name = "sleeve";
-  sp::set_rotation(sleeve, R);
-  sp::Body arm;
-  arm.name = "arm";
-  sp::set_rotation(arm, R);
-  arm.position = R * Eigen::Vector3d(-0.2, 0, 0);
-  arm.points["tip"] = Eigen::Vector3d(arm_size.length_m, 0, 0);
-  sp::PointMass payload;
-  payload.name = "payload";
-  payload.mass_kg = 5.0;
-  payload.position_body = arm.points["tip"];
-  arm.point_masses = {payload};
-  m.bodies = {ground, sleeve, arm};
-  m.joints = {sp::make_joint("fix", sp::JointType::Fixed, "ground", "origin", "sleeve", "origin"),
-              sp::make_joint("slide", sp::JointType::Prismatic, "sleeve", "origin", "arm", "origin",
-                             Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX())};
-  sp::MotionDrive push;
-  push.name = "push";
-  push.joint = "slide";
-  push.coordinate = sp::DriveCoordinate::Translation;
-  push.law = std::make_shared<mech::Polynomial345Law>(push_m, 1.0);
-  m.motion_drives = {push};
-
-  SpatialPart sleeve_part = bar("sleeve", sleeve_size, {{"fix", "x0"}});
-  SpatialPart arm_part = bar("arm", arm_size, {}, {{"payload", "x1"}});
-  // The lands: two windows 50 mm long on the sleeve's face y0, centred 25 mm
-  // from its ends; the arm's stations on its face y1 every 25 mm.
-  const loads::SlideStations lands = loads::add_slide_stations(sleeve_part.model.mesh, "y0", Eigen::Vector3d::Zero(),
-                                                               Eigen::Vector3d::UnitX(), 0.05, 0.35);
-  EXPECT_EQ(lands.face_sets.size(), 2u);
-  loads::SpatialSlideAttachment slide;
-  slide.joint = "slide";
-  slide.drive = "push";
-  slide.rear_m = lands.s_m.front();
-  slide.front_m = lands.s_m.back();
-  slide.rear_face_set = lands.face_sets.front();
-  slide.front_face_set = lands.face_sets.back();
-  slide.stations = loads::add_slide_stations(arm_part.model.mesh, "y1", Eigen::Vector3d::Zero(),
-                                             Eigen::Vector3d::UnitX(), 0.05, 0.025);
-  sleeve_part.attachments.slides = {slide};
-  arm_part.attachments.slides = {slide};
-  out.parts = {sleeve_part, arm_part};
-  give_mass_of(m, out.parts);
-  return out;
-}
 
 TEST(SpatialElasticAssembly, TheLandsOfASlideCarryItsMultibodyLoadAndASlideBeyondItsStrokeIsNamed) {
   {

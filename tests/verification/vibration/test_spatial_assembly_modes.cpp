@@ -70,6 +70,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include "../../unit/structure/spatial_fixtures.hpp"
 #include "../../unit/structure/structure_fixtures.hpp"
 #include "kinetofem/core/error.hpp"
 #include "kinetofem/loads/spatial_link_loads.hpp"
@@ -102,24 +103,12 @@ using Eigen::VectorXd;
 using structure::SpatialPart;
 using structure::test::BarSize;
 using structure::test::kDeg;
-
-SpatialPart bar(const std::string& body, const BarSize& size, std::vector<loads::SpatialAttachment> joints,
-                std::vector<loads::SpatialAttachment> masses = {}) {
-  SpatialPart part;
-  part.label = "part '" + body + "' (test bar)";
-  part.attachments.body = body;
-  part.attachments.joints = std::move(joints);
-  part.attachments.point_masses = std::move(masses);
-  part.model.mesh = structure::test::bar_mesh(size);
-  part.model.material = structure::test::steel();
-  return part;
-}
-
-void give_mass_of(sp::Model& model, const std::vector<SpatialPart>& parts) {
-  for (const SpatialPart& p : parts)
-    for (sp::Body& b : model.bodies)
-      if (b.name == p.body()) loads::assign_mass_properties(b, p.model);
-}
+using structure::test::give_mass_of;
+using structure::test::slide_model;
+using structure::test::spatial_arm;
+using structure::test::spatial_bar;
+using structure::test::SlideModel;
+using structure::test::SpatialArm;
 
 // --- 1. The cantilevered bar on an oblique prismatic joint ----------------
 
@@ -153,7 +142,7 @@ sp::Model sliding_cantilever(const Eigen::Matrix3d& turn, std::vector<SpatialPar
   push.coordinate = sp::DriveCoordinate::Translation;
   push.law = std::make_shared<mech::ConstantVelocityLaw>(0.0);
   model.motion_drives = {push};
-  parts = {bar("arm", kCantilever, {{"slide", "x0"}, {"push", "x0"}})};
+  parts = {spatial_bar("arm", kCantilever, {{"slide", "x0"}, {"push", "x0"}})};
   give_mass_of(model, parts);
   return model;
 }
@@ -236,59 +225,6 @@ TEST(SpatialAssemblyModes, ACantileverOnAnObliquePrismaticJointBendsAsBeamTheory
 }
 
 // --- 2. The spatial two-link arm vs a monolithic reference ----------------
-
-struct SpatialArm {
-  sp::Model model;
-  std::vector<SpatialPart> parts;
-};
-
-// The arm of tests/verification/structure/test_spatial_assembly.cpp.
-SpatialArm spatial_arm() {
-  const BarSize link1_size{.length_m = 0.40, .height_m = 0.04, .thickness_m = 0.03, .cells = {16, 2, 2}};
-  const BarSize link2_size{.length_m = 0.30, .height_m = 0.03, .thickness_m = 0.03, .cells = {12, 2, 2}};
-  SpatialArm arm;
-  sp::Model& m = arm.model;
-  m.name = "spatial two-link arm";
-  m.characteristic_length_m = 0.7;
-  sp::Body ground;
-  ground.name = "ground";
-  ground.fixed = true;
-  const Eigen::Matrix3d R1 = Eigen::AngleAxisd(30 * kDeg, Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d R2 = R1 * Eigen::AngleAxisd(-40 * kDeg, Vector3d::UnitY()).toRotationMatrix();
-  sp::Body link1;
-  link1.name = "link1";
-  sp::set_rotation(link1, R1);
-  link1.points["tip"] = Vector3d(link1_size.length_m, 0, 0);
-  sp::Body link2;
-  link2.name = "link2";
-  sp::set_rotation(link2, R2);
-  link2.position = R1 * Vector3d(link1_size.length_m, 0, 0);
-  link2.points["tip"] = Vector3d(link2_size.length_m, 0, 0);
-  sp::PointMass payload;
-  payload.name = "payload";
-  payload.mass_kg = 3.0;
-  payload.position_body = link2.points["tip"];
-  payload.inertia_kgm2 = Vector3d(0.01, 0.02, 0.03).asDiagonal();
-  link2.point_masses = {payload};
-  m.bodies = {ground, link1, link2};
-  m.joints = {sp::make_joint("J1", sp::JointType::Revolute, "ground", "origin", "link1", "origin", Vector3d::UnitZ(),
-                             Vector3d::UnitZ()),
-              sp::make_joint("J2", sp::JointType::Revolute, "link1", "tip", "link2", "origin", Vector3d::UnitY(),
-                             Vector3d::UnitY())};
-  sp::MotionDrive d1;
-  d1.name = "d1";
-  d1.joint = "J1";
-  d1.law = std::make_shared<mech::Polynomial345Law>(60 * kDeg, 1.0);
-  sp::MotionDrive d2 = d1;
-  d2.name = "d2";
-  d2.joint = "J2";
-  d2.law = std::make_shared<mech::Polynomial345Law>(-50 * kDeg, 1.0);
-  m.motion_drives = {d1, d2};
-  arm.parts = {bar("link1", link1_size, {{"J1", "x0"}, {"d1", "x0"}, {"J2", "x1"}, {"d2", "x1"}}),
-               bar("link2", link2_size, {{"J2", "x0"}, {"d2", "x0"}}, {{"payload", "x1"}})};
-  give_mass_of(m, arm.parts);
-  return arm;
-}
 
 // The monolithic reference (header, 2): the lowest `count` frequencies, Hz.
 VectorXd monolithic_frequencies(const std::vector<SpatialPart>& parts, const sp::Model& model, const sp::Frame& frame,
